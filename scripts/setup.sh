@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Installs every Debian package Rayster needs to build, test and run headless.
+# Idempotent: re-running it only installs what is missing. Needs root (or sudo).
+set -euo pipefail
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+
+# Lavapipe only has ray tracing in the Mesa from bookworm-backports.
+if ! grep -rqs 'bookworm-backports' /etc/apt/sources.list /etc/apt/sources.list.d/; then
+  echo "setup: adding the bookworm-backports suite"
+  echo 'deb http://deb.debian.org/debian bookworm-backports main' |
+    $SUDO tee /etc/apt/sources.list.d/rayster-backports.list >/dev/null
+  NEED_UPDATE=1
+fi
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config git
+  glslc spirv-tools
+  libvulkan-dev vulkan-validationlayers vulkan-tools libvulkan-volk-dev
+  libglm-dev libfmt-dev libcli11-dev nlohmann-json3-dev libstb-dev
+  libtinyexr-dev libgtest-dev libgmock-dev
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+
+# Mesa must come from backports (>= 25): bookworm's own lavapipe has no ray tracing.
+mesa_ver=$(dpkg-query -W -f='${Version}' mesa-vulkan-drivers 2>/dev/null || true)
+need_mesa=1
+case "$mesa_ver" in 2[5-9].*|[3-9][0-9].*) need_mesa=0 ;; esac
+
+if [ ${#missing[@]} -gt 0 ] || [ "$need_mesa" = 1 ]; then
+  if [ "${NEED_UPDATE:-0}" = 1 ] || [ ! -d /var/lib/apt/lists ] || [ -z "$(ls /var/lib/apt/lists/ 2>/dev/null | grep -i backports)" ]; then
+    $SUDO apt-get update -qq
+  fi
+  if [ ${#missing[@]} -gt 0 ]; then
+    echo "setup: installing ${missing[*]}"
+    $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  fi
+  if [ "$need_mesa" = 1 ]; then
+    echo "setup: installing lavapipe with ray tracing from bookworm-backports"
+    $SUDO apt-get install -y -qq --no-install-recommends -t bookworm-backports mesa-vulkan-drivers
+  fi
+fi
+echo "setup: all packages present"
