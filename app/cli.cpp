@@ -1,0 +1,94 @@
+// Command-line front end: parses arguments with CLI11 and maps every failure to a documented
+// exit code with a one-line cause.
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#include "app/render_command.h"
+#include "core/error.h"
+#include "core/log.h"
+
+namespace rayster::app {
+
+namespace {
+constexpr const char* kExitCodes =
+    "Exit codes:\n"
+    "  0 ok, 1 other failure (or validation errors with --validation), 2 bad arguments,\n"
+    "  3 missing or invalid input file, 4 no Vulkan device, 5 missing capability (ray tracing),\n"
+    "  6 device lost, 7 out of memory, 8 output could not be written, 9 comparison over budget";
+
+bool parseSize(const std::string& text, uint32_t& w, uint32_t& h) {
+  unsigned a = 0, b = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%u%c%u%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X')) return false;
+  if (a == 0 || b == 0 || a > 16384 || b > 16384) return false;
+  w = a;
+  h = b;
+  return true;
+}
+} // namespace
+
+int run(int argc, char** argv) {
+  CLI::App cli{"Rayster: a real-time hybrid (raster + ray-traced) renderer on Vulkan."};
+  cli.footer(kExitCodes);
+  cli.require_subcommand(1);
+  bool verbose = false;
+  bool validation = std::getenv("RAYSTER_VALIDATION") && std::string(std::getenv("RAYSTER_VALIDATION")) == "1";
+  std::string device;
+  cli.add_flag("-v,--verbose", verbose, "Print debug details (device, scene statistics)");
+  cli.add_flag("--validation", validation, "Enable Vulkan validation (also RAYSTER_VALIDATION=1); any error fails the run");
+  cli.add_option("--device", device, "Use the device whose name contains this text");
+
+  RenderOptions ro;
+  std::string size = "1280x720", primary = "auto";
+  CLI::App* render = cli.add_subcommand("render", "Render a scene to an image, headless");
+  render->add_option("scene", ro.scene, "Scene: builtin:NAME (default builtin:cornell)");
+  render->add_option("-o,--output", ro.output, "Output image, .png (tonemapped) or .exr (linear HDR)");
+  render->add_option("--hdr", ro.hdrOutput, "Also write the linear HDR image to this .exr");
+  render->add_option("--size", size, "Image size WxH (default 1280x720)");
+  render->add_option("--frames", ro.settings.frames, "Frames to accumulate for the static camera (default 16)")
+      ->check(CLI::Range(1u, 100000u));
+  render->add_option("--seed", ro.settings.seed, "Random seed; the same seed gives the same image");
+  render->add_option("--primary", primary, "G-buffer producer: raster, rt (traced primary rays) or auto")
+      ->check(CLI::IsMember({"raster", "rt", "auto"}));
+  render->add_option("--exposure", ro.settings.exposureEv, "Exposure in EV stops (default 0)");
+  render->add_option("--camera", ro.settings.camera, "Camera name from the scene");
+  render->add_flag("--timings", ro.printTimings, "Print per-pass GPU times");
+  render->add_option("--json", ro.jsonOutput, "Write per-pass GPU times and settings as JSON to this file");
+
+  CLI::App* info = cli.add_subcommand("info", "List Vulkan devices and their ray-tracing capabilities");
+  render->fallthrough();  // global options (-v, --validation, --device) also after the subcommand
+  info->fallthrough();
+
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "rayster: error: %s (see rayster --help)\n", e.what());
+    return int(ExitCode::BadArguments);
+  }
+  if (verbose) log::setLevel(log::Level::Debug);
+
+  if (info->parsed()) return infoCommand();
+  if (render->parsed()) {
+    if (!parseSize(size, ro.settings.width, ro.settings.height)) {
+      std::fprintf(stderr, "rayster: error: --size must be WxH with 1..16384 each, got '%s'\n", size.c_str());
+      return int(ExitCode::BadArguments);
+    }
+    ro.settings.primary = primary == "raster" ? render::Primary::Raster
+                          : primary == "rt"   ? render::Primary::Traced
+                                              : render::Primary::Auto;
+    ro.validation = validation;
+    ro.device = device;
+    return renderCommand(ro);
+  }
+  return int(ExitCode::BadArguments);
+}
+
+} // namespace rayster::app

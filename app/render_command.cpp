@@ -1,0 +1,139 @@
+// `rayster render` and `rayster info`.
+#include "app/render_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/image_io.h"
+#include "core/log.h"
+#include "rhi/context.h"
+#include "scene/builtin.h"
+
+namespace rayster::app {
+namespace {
+
+int fail(const Error& e) {
+  std::fprintf(stderr, "rayster: error: %s\n", e.message.c_str());
+  return int(e.code);
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+Status checkOutputPath(const std::string& path, const char* what, std::initializer_list<const char*> exts) {
+  std::string ext = lower(std::filesystem::path(path).extension().string());
+  for (const char* e : exts)
+    if (ext == e) return okStatus();
+  return makeError(ExitCode::BadArguments, "{} '{}' must end in {}", what, path, *exts.begin());
+}
+
+Result<scene::Scene> loadScene(const std::string& name) {
+  if (name.rfind("builtin:", 0) == 0) return scene::makeBuiltinScene(name);
+  if (!std::filesystem::exists(name)) return makeError(ExitCode::BadInput, "cannot read scene '{}': no such file", name);
+  return makeError(ExitCode::BadInput, "cannot load '{}': only built-in scenes (builtin:cornell) are supported so far",
+                   name);
+}
+
+nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, const render::RenderOutput& out) {
+  nlohmann::json j;
+  j["device"] = ctx.info().name;
+  j["driver"] = ctx.info().driverInfo;
+  j["scene"] = o.scene;
+  j["width"] = o.settings.width;
+  j["height"] = o.settings.height;
+  j["frames"] = o.settings.frames;
+  j["seed"] = o.settings.seed;
+  j["primary"] = render::primaryName(out.primaryUsed);
+  if (out.rasterGBufferMs >= 0) j["auto"] = {{"raster_gbuffer_ms", out.rasterGBufferMs}, {"traced_gbuffer_ms", out.tracedGBufferMs}};
+  j["frame_gpu_ms_median"] = out.frameMedianMs;
+  for (const auto& p : out.passes)
+    j["passes"].push_back({{"name", p.name}, {"median_ms", p.medianMs}, {"min_ms", p.minMs}, {"p95_ms", p.p95Ms},
+                           {"frames", p.samples}});
+  return j;
+}
+
+} // namespace
+
+int renderCommand(const RenderOptions& o) {
+  // Check everything about the outputs before any GPU work, so bad arguments fail fast.
+  if (auto s = checkOutputPath(o.output, "output", {".png", ".exr"}); !s) return fail(s.error());
+  if (!o.hdrOutput.empty())
+    if (auto s = checkOutputPath(o.hdrOutput, "--hdr", {".exr"}); !s) return fail(s.error());
+  if (!o.jsonOutput.empty())
+    if (auto s = checkOutputPath(o.jsonOutput, "--json", {".json"}); !s) return fail(s.error());
+
+  auto scene = loadScene(o.scene);
+  if (!scene) return fail(scene.error());
+  auto ctx = rhi::Context::create({o.validation, true, o.device});
+  if (!ctx) return fail(ctx.error());
+  log::debug("device: {} ({}), driver {}", (*ctx)->info().name, (*ctx)->info().typeName(), (*ctx)->info().driverInfo);
+
+  int code = 0;
+  {
+    auto renderer = render::Renderer::create(**ctx, *scene);
+    if (!renderer) return fail(renderer.error());
+    auto t0 = std::chrono::steady_clock::now();
+    auto out = (*renderer)->render(o.settings);
+    if (!out) return fail(out.error());
+    double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+
+    Status written = lower(std::filesystem::path(o.output).extension().string()) == ".exr" ? writeExr(o.output, out->hdr)
+                                                                                         : writePng(o.output, out->ldr);
+    if (!written) return fail(written.error());
+    if (!o.hdrOutput.empty())
+      if (auto s = writeExr(o.hdrOutput, out->hdr); !s) return fail(s.error());
+    if (o.printTimings) {
+      std::printf("%-20s %10s %10s %10s\n", "pass", "median ms", "min ms", "p95 ms");
+      for (const auto& p : out->passes) std::printf("%-20s %10.3f %10.3f %10.3f\n", p.name.c_str(), p.medianMs, p.minMs, p.p95Ms);
+      std::printf("%-20s %10.3f   (%s, primary %s, %ux%u)\n", "frame (GPU)", out->frameMedianMs,
+                  (*ctx)->info().name.c_str(), render::primaryName(out->primaryUsed), o.settings.width, o.settings.height);
+    }
+    if (!o.jsonOutput.empty()) {
+      std::string tmp = o.jsonOutput + ".tmp";
+      {
+        std::ofstream f(tmp);
+        f << timingsJson(**ctx, o, *out).dump(2) << "\n";
+        if (!f) return fail(makeError(ExitCode::OutputFailed, "cannot write {}", o.jsonOutput));
+      }
+      std::filesystem::rename(tmp, o.jsonOutput);
+    }
+    log::info("wrote {} ({}x{}, {} frames, primary {}, {:.0f} ms)", o.output, o.settings.width, o.settings.height,
+              o.settings.frames, render::primaryName(out->primaryUsed), wallMs);
+  }
+  if ((*ctx)->validationEnabled() && (*ctx)->validationErrors() > 0) {
+    std::fprintf(stderr, "rayster: error: %u Vulkan validation error(s)\n", (*ctx)->validationErrors());
+    code = int(ExitCode::Failure);
+  }
+  return code;
+}
+
+int infoCommand() {
+  auto devices = rhi::Context::listDevices();
+  if (!devices) return fail(devices.error());
+  if (devices->empty()) return fail(makeError(ExitCode::NoDevice, "no Vulkan device found"));
+  for (const rhi::DeviceInfo& d : *devices) {
+    const rhi::Capabilities& c = d.caps;
+    std::printf("%s (%s)\n", d.name.c_str(), d.typeName());
+    std::printf("  Vulkan %u.%u.%u, driver %s %s, %.1f GiB device-local\n", VK_API_VERSION_MAJOR(d.apiVersion),
+                VK_API_VERSION_MINOR(d.apiVersion), VK_API_VERSION_PATCH(d.apiVersion), d.driverName.c_str(),
+                d.driverInfo.c_str(), double(d.deviceLocalBytes) / (1 << 30));
+    std::printf("  ray-tracing pipeline: %s, acceleration structures: %s, ray queries: %s\n",
+                c.rayTracingPipeline ? "yes" : "no", c.accelerationStructure ? "yes" : "no", c.rayQuery ? "yes" : "no");
+    if (c.rayTracingPipeline)
+      std::printf("  shader group handle %u B (alignment %u, base alignment %u), max recursion %u\n",
+                  c.shaderGroupHandleSize, c.shaderGroupHandleAlignment, c.shaderGroupBaseAlignment,
+                  c.maxRayRecursionDepth);
+    std::printf("  usable by rayster: %s\n", !d.unsuitableReason.empty() ? d.unsuitableReason.c_str()
+                                           : c.rayTracing()            ? "yes"
+                                                                       : "no ray tracing");
+  }
+  return 0;
+}
+
+} // namespace rayster::app

@@ -1,0 +1,257 @@
+#include "core/image_io.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+// The one stb_image instance in the program: scene loaders decode glTF/OBJ textures (PNG, JPEG)
+// through it too. Other decoders stay out: smaller binary, less attack surface for untrusted files.
+#define STBI_ONLY_PNG
+#define STBI_ONLY_JPEG
+#define STBI_ONLY_HDR
+#include <stb_image.h>
+#include <stb_image_write.h>
+#include <tinyexr.h>
+
+namespace fs = std::filesystem;
+
+namespace rayster {
+namespace {
+
+std::string lowerExtension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+Error writeError(const fs::path& path, const std::string& reason) {
+  return makeError(ExitCode::OutputFailed, "cannot write {}: {}", path.string(), reason);
+}
+
+// Runs `produce(tempPath)` and renames the result over `path`. The temp file lives in the same
+// folder so the rename is atomic (same filesystem); the pid keeps parallel test runs apart.
+template <class Produce>
+Status writeAtomically(const fs::path& path, Produce&& produce) {
+  std::error_code ec;
+  const fs::path parent = path.parent_path();
+  if (!parent.empty() && !fs::exists(parent, ec)) {
+    fs::create_directories(parent, ec);
+    if (ec) return writeError(path, "cannot create folder " + parent.string() + ": " + ec.message());
+  }
+  fs::path temp = path;
+  temp += ".tmp-" + std::to_string(::getpid());
+  std::string reason;
+  if (!produce(temp, reason)) {
+    fs::remove(temp, ec);
+    return writeError(path, reason);
+  }
+  fs::rename(temp, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    return writeError(path, ec.message());
+  }
+  return okStatus();
+}
+
+bool writeBytes(const fs::path& path, const std::vector<uint8_t>& bytes, std::string& reason) {
+  std::FILE* file = std::fopen(path.c_str(), "wb");
+  if (!file) {
+    reason = std::strerror(errno);
+    return false;
+  }
+  const size_t written = std::fwrite(bytes.data(), 1, bytes.size(), file);
+  const int writeErrno = errno;
+  // fclose flushes: a full disk often shows up only here.
+  const bool closed = std::fclose(file) == 0;
+  if (written != bytes.size() || !closed) {
+    reason = std::strerror(written != bytes.size() ? writeErrno : errno);
+    return false;
+  }
+  return true;
+}
+
+void appendToVector(void* context, void* data, int size) {
+  auto* bytes = static_cast<std::vector<uint8_t>*>(context);
+  auto* begin = static_cast<const uint8_t*>(data);
+  bytes->insert(bytes->end(), begin, begin + size);
+}
+
+Error readError(const fs::path& path, const std::string& reason) {
+  return makeError(ExitCode::BadInput, "cannot read {}: {}", path.string(), reason);
+}
+
+// Distinguishes "missing" from "corrupt" before a decoder reports something vague.
+std::optional<Error> checkReadable(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return readError(path, "no such file");
+  if (!fs::is_regular_file(path, ec)) return readError(path, "not a regular file");
+  return std::nullopt;
+}
+
+const std::array<float, 256>& srgbDecodeTable() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) t[i] = srgbToLinear(static_cast<float>(i) / 255.0f);
+    return t;
+  }();
+  return table;
+}
+
+uint8_t quantize(float value) {
+  if (!(value > 0.0f)) return 0; // also catches NaN
+  if (value >= 1.0f) return 255;
+  return static_cast<uint8_t>(std::lround(value * 255.0f));
+}
+
+Result<ImageF> readHdr(const fs::path& path) {
+  if (auto error = checkReadable(path)) return *error;
+  int w = 0, h = 0, channels = 0;
+  float* data = stbi_loadf(path.c_str(), &w, &h, &channels, 4);
+  if (!data) return readError(path, stbi_failure_reason() ? stbi_failure_reason() : "decode failed");
+  ImageF image = ImageF::make(w, h);
+  std::copy(data, data + image.rgba.size(), image.rgba.begin());
+  stbi_image_free(data);
+  return image;
+}
+
+Status writeHdr(const fs::path& path, const ImageF& image) {
+  return writeAtomically(path, [&](const fs::path& temp, std::string& reason) {
+    std::vector<uint8_t> bytes;
+    if (!stbi_write_hdr_to_func(appendToVector, &bytes, image.width, image.height, 4, image.rgba.data())) {
+      reason = "Radiance HDR encoding failed";
+      return false;
+    }
+    return writeBytes(temp, bytes, reason);
+  });
+}
+
+} // namespace
+
+float srgbToLinear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+float linearToSrgb(float l) {
+  return l <= 0.0031308f ? l * 12.92f : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
+}
+
+Status writePng(const fs::path& path, const Image8& image) {
+  if (image.empty()) return writeError(path, "image is empty");
+  return writeAtomically(path, [&](const fs::path& temp, std::string& reason) {
+    std::vector<uint8_t> bytes;
+    if (!stbi_write_png_to_func(appendToVector, &bytes, image.width, image.height, 4, image.rgba.data(),
+                                image.width * 4)) {
+      reason = "PNG encoding failed";
+      return false;
+    }
+    return writeBytes(temp, bytes, reason);
+  });
+}
+
+Status writeExr(const fs::path& path, const ImageF& image) {
+  if (image.empty()) return writeError(path, "image is empty");
+  return writeAtomically(path, [&](const fs::path& temp, std::string& reason) {
+    const char* err = nullptr;
+    const int rc = SaveEXR(image.rgba.data(), image.width, image.height, 4, /*save_as_fp16=*/1,
+                           temp.c_str(), &err);
+    if (rc != TINYEXR_SUCCESS) {
+      reason = err ? err : fmt::format("EXR encoder error {}", rc);
+      if (err) FreeEXRErrorMessage(err);
+      return false;
+    }
+    return true;
+  });
+}
+
+Result<Image8> readPng(const fs::path& path) {
+  if (auto error = checkReadable(path)) return *error;
+  int w = 0, h = 0, channels = 0;
+  uint8_t* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
+  if (!data) return readError(path, stbi_failure_reason() ? stbi_failure_reason() : "decode failed");
+  Image8 image = Image8::make(w, h);
+  std::copy(data, data + image.rgba.size(), image.rgba.begin());
+  stbi_image_free(data);
+  return image;
+}
+
+Result<ImageF> readExr(const fs::path& path) {
+  if (auto error = checkReadable(path)) return *error;
+  float* data = nullptr;
+  int w = 0, h = 0;
+  const char* err = nullptr;
+  const int rc = LoadEXR(&data, &w, &h, path.c_str(), &err);
+  if (rc != TINYEXR_SUCCESS || !data) {
+    std::string reason = err ? err : fmt::format("EXR decoder error {}", rc);
+    if (err) FreeEXRErrorMessage(err);
+    std::free(data);
+    return readError(path, reason);
+  }
+  ImageF image = ImageF::make(w, h);
+  std::copy(data, data + image.rgba.size(), image.rgba.begin());
+  std::free(data); // tinyexr allocates with malloc
+  return image;
+}
+
+Image8 encodeSrgb8(const ImageF& linear) {
+  Image8 out = Image8::make(linear.width, linear.height);
+  for (size_t i = 0; i < linear.rgba.size(); i += 4) {
+    for (size_t c = 0; c < 3; ++c) {
+      const float v = linear.rgba[i + c];
+      out.rgba[i + c] = quantize(v > 0.0f ? linearToSrgb(std::min(v, 1.0f)) : 0.0f);
+    }
+    out.rgba[i + 3] = quantize(linear.rgba[i + 3]);
+  }
+  return out;
+}
+
+ImageF decodeSrgb8(const Image8& encoded) {
+  const auto& table = srgbDecodeTable();
+  ImageF out = ImageF::make(encoded.width, encoded.height);
+  for (size_t i = 0; i < encoded.rgba.size(); i += 4) {
+    for (size_t c = 0; c < 3; ++c) out.rgba[i + c] = table[encoded.rgba[i + c]];
+    out.rgba[i + 3] = static_cast<float>(encoded.rgba[i + 3]) / 255.0f;
+  }
+  return out;
+}
+
+Result<ImageF> readImageLinear(const fs::path& path) {
+  const std::string ext = lowerExtension(path);
+  if (ext == ".png") {
+    auto image = readPng(path);
+    if (!image) return image.error();
+    return decodeSrgb8(*image);
+  }
+  if (ext == ".exr") return readExr(path);
+  if (ext == ".hdr") return readHdr(path);
+  return makeError(ExitCode::BadArguments, "{}: unknown image format '{}' (expected .png, .exr or .hdr)",
+                   path.string(), ext);
+}
+
+Status writeImage(const fs::path& path, const ImageF& linear) {
+  const std::string ext = lowerExtension(path);
+  if (ext == ".png") return writePng(path, encodeSrgb8(linear));
+  if (ext == ".exr") return writeExr(path, linear);
+  if (ext == ".hdr") {
+    if (linear.empty()) return writeError(path, "image is empty");
+    return writeHdr(path, linear);
+  }
+  return makeError(ExitCode::BadArguments, "{}: unknown image format '{}' (expected .png, .exr or .hdr)",
+                   path.string(), ext);
+}
+
+} // namespace rayster

@@ -1,0 +1,34 @@
+#pragma once
+// Image files in and out. Writes are atomic (temp file + rename) so a crashed or failed render
+// never leaves a truncated image that a later `rayster compare` would mistake for a result.
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/image.h"
+
+namespace rayster {
+
+// Exact piecewise sRGB transfer functions (IEC 61966-2-1), not the 2.2 gamma approximation:
+// golden images are compared at +-1/255, where the approximation is visibly off near black.
+float srgbToLinear(float encoded);
+float linearToSrgb(float linear);
+
+// Failures: ExitCode::OutputFailed, "cannot write <path>: <reason>". Creates the parent folder
+// if it is missing (users pass -o out/frame.png).
+Status writePng(const std::filesystem::path& path, const Image8& image);
+Status writeExr(const std::filesystem::path& path, const ImageF& image); // RGBA, half channels
+
+// Failures: ExitCode::BadInput, naming the file and the cause.
+Result<Image8> readPng(const std::filesystem::path& path);
+Result<ImageF> readExr(const std::filesystem::path& path);
+
+// By extension (case-insensitive): .png (sRGB <-> linear, alpha kept linear), .exr, .hdr.
+// Unknown extension: ExitCode::BadArguments.
+Result<ImageF> readImageLinear(const std::filesystem::path& path);
+Status writeImage(const std::filesystem::path& path, const ImageF& linear);
+
+// Linear float -> 8-bit sRGB with clamping; NaN becomes 0 so one bad pixel cannot poison a PNG.
+Image8 encodeSrgb8(const ImageF& linear);
+ImageF decodeSrgb8(const Image8& encoded);
+
+} // namespace rayster

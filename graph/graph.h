@@ -1,0 +1,143 @@
+#pragma once
+// The render graph (TECHNIQUES.md §17): passes declare what they read and write; the graph culls
+// passes whose results nobody uses, derives synchronization2 barriers and layouts from tracked
+// per-resource state, creates transient images, and wraps every pass in a debug label and a GPU
+// timestamp pair. Passes run in the order they were added: a pass can only name resources that
+// exist when it is added, so that order is already a valid topological order.
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <volk.h>
+
+#include "graph/resource_state.h"
+#include "rhi/resources.h"
+
+namespace rayster::rhi {
+class Context;
+class TimestampPool;
+} // namespace rayster::rhi
+
+namespace rayster::graph {
+
+struct ImageHandle {
+  uint32_t id = UINT32_MAX;
+  bool valid() const { return id != UINT32_MAX; }
+};
+struct BufferHandle {
+  uint32_t id = UINT32_MAX;
+  bool valid() const { return id != UINT32_MAX; }
+};
+
+// Keeps transient images alive between frames so a static configuration allocates once.
+class TransientPool {
+ public:
+  rhi::Image& acquire(rhi::Context& ctx, const std::string& name, const rhi::ImageDesc& desc);
+  size_t size() const { return images_.size(); }
+
+ private:
+  std::map<std::string, rhi::Image> images_;
+};
+
+class RenderGraph;
+
+class PassBuilder {
+ public:
+  ImageHandle read(ImageHandle image, Use use);
+  ImageHandle write(ImageHandle image, Use use);
+  BufferHandle read(BufferHandle buffer, Use use);
+  BufferHandle write(BufferHandle buffer, Use use);
+  // Keeps the pass even if nothing reads what it writes (readbacks, host-visible results).
+  void sideEffect();
+
+ private:
+  friend class RenderGraph;
+  PassBuilder(RenderGraph& graph, uint32_t pass) : graph_(graph), pass_(pass) {}
+  RenderGraph& graph_;
+  uint32_t pass_;
+};
+
+class PassContext {
+ public:
+  VkCommandBuffer cmd;
+  const rhi::Image& image(ImageHandle h) const;
+  const rhi::Buffer& buffer(BufferHandle h) const;
+
+ private:
+  friend class RenderGraph;
+  explicit PassContext(const RenderGraph& graph, VkCommandBuffer c) : cmd(c), graph_(graph) {}
+  const RenderGraph& graph_;
+};
+
+struct PlannedBarrier {
+  bool isImage;
+  uint32_t resource;
+  Barrier barrier;
+};
+struct PlannedPass {
+  uint32_t pass;
+  std::vector<PlannedBarrier> barriers;
+};
+
+class RenderGraph {
+ public:
+  // ctx may be null for planning-only use (unit tests): then execute() is unavailable.
+  RenderGraph(rhi::Context* ctx, TransientPool* pool) : ctx_(ctx), pool_(pool) {}
+
+  ImageHandle createImage(std::string name, const rhi::ImageDesc& desc);
+  // External images/buffers keep their state in `state` across frames (histories, outputs).
+  ImageHandle importImage(std::string name, const rhi::Image* image, ResourceState* state);
+  BufferHandle importBuffer(std::string name, const rhi::Buffer* buffer, ResourceState* state);
+
+  using Execute = std::function<void(PassContext&)>;
+  void addPass(std::string name, const std::function<void(PassBuilder&)>& setup, Execute execute);
+
+  // Orders, culls and derives barriers; pure (no Vulkan calls), so it is unit-testable.
+  std::vector<PlannedPass> compile();
+  // Records every live pass into cmd, with its barriers, label and timestamps.
+  void execute(VkCommandBuffer cmd, rhi::TimestampPool* timers);
+
+  const std::string& passName(uint32_t pass) const { return passes_[pass].name; }
+  const std::string& imageName(uint32_t image) const { return images_[image].name; }
+  const rhi::ImageDesc& imageDesc(ImageHandle h) const { return images_[h.id].desc; }
+
+ private:
+  friend class PassBuilder;
+  friend class PassContext;
+  struct Access {
+    bool isImage;
+    uint32_t resource;
+    Use use;
+  };
+  struct Pass {
+    std::string name;
+    std::vector<Access> accesses;
+    Execute execute;
+    bool sideEffect = false;
+  };
+  struct ImageEntry {
+    std::string name;
+    rhi::ImageDesc desc;
+    const rhi::Image* image = nullptr;
+    ResourceState* external = nullptr;
+    ResourceState local;
+  };
+  struct BufferEntry {
+    std::string name;
+    const rhi::Buffer* buffer = nullptr;
+    ResourceState* external = nullptr;
+    ResourceState local;
+  };
+  ResourceState& state(bool isImage, uint32_t id);
+
+  rhi::Context* ctx_;
+  TransientPool* pool_;
+  std::vector<Pass> passes_;
+  std::vector<ImageEntry> images_;
+  std::vector<BufferEntry> buffers_;
+};
+
+} // namespace rayster::graph

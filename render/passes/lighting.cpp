@@ -1,0 +1,39 @@
+// Pass 7: deferred lighting in compute.
+#include "render/gpu_scene.h"
+#include "render/passes/passes.h"
+#include "render/pipelines.h"
+
+namespace rayster::render {
+
+graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
+                                 graph::ImageHandle visibility) {
+  graph::ImageHandle hdr = graph.createImage(
+      "hdr", {kHdrFormat, in.size.width, in.size.height, 1,
+              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+  graph.addPass(
+      "lighting",
+      [&](graph::PassBuilder& b) {
+        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, visibility})
+          b.read(h, graph::Use::SampledCompute);
+        b.write(hdr, graph::Use::StorageWriteCompute);
+      },
+      [gb, visibility, hdr, &in](graph::PassContext& pc) {
+        const rhi::Pipeline& pipe = in.pipelines.lighting;
+        VkSampler s = in.nearest.handle();
+        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
+        rhi::DescriptorWriter()
+            .uniformBuffer(0, in.constants)
+            .sampledImage(1, pc.image(gb.depth).view(), s)
+            .sampledImage(2, pc.image(gb.normals).view(), s)
+            .sampledImage(3, pc.image(gb.albedo).view(), s)
+            .sampledImage(4, pc.image(gb.material).view(), s)
+            .sampledImage(5, pc.image(gb.emissive).view(), s)
+            .sampledImage(6, pc.image(visibility).view(), s)
+            .storageImage(7, pc.image(hdr).view())
+            .push(pc.cmd, pipe);
+        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
+      });
+  return hdr;
+}
+
+} // namespace rayster::render

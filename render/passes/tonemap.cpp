@@ -1,0 +1,58 @@
+// Pass 8: tonemap and output, and the copy of results back to the host.
+#include <cstring>
+
+#include "render/passes/passes.h"
+#include "render/pipelines.h"
+
+namespace rayster::render {
+
+graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle hdr, float exposure,
+                           uint32_t seed) {
+  graph::ImageHandle ldr = graph.createImage(
+      "ldr", {kLdrFormat, in.size.width, in.size.height, 1, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+  graph.addPass(
+      "tonemap",
+      [&](graph::PassBuilder& b) {
+        b.read(hdr, graph::Use::SampledCompute);
+        b.write(ldr, graph::Use::StorageWriteCompute);
+      },
+      [hdr, ldr, exposure, seed, &in](graph::PassContext& pc) {
+        const rhi::Pipeline& pipe = in.pipelines.tonemap;
+        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
+        rhi::DescriptorWriter()
+            .sampledImage(1, pc.image(hdr).view(), in.nearest.handle())
+            .storageImage(2, pc.image(ldr).view())
+            .push(pc.cmd, pipe);
+        uint32_t push[4] = {in.size.width, in.size.height, 0, seed};
+        std::memcpy(&push[2], &exposure, sizeof(float));
+        vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), push);
+        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
+      });
+  return ldr;
+}
+
+void readback(graph::RenderGraph& graph, graph::ImageHandle image, graph::BufferHandle buffer) {
+  graph.addPass(
+      "readback",
+      [&](graph::PassBuilder& b) {
+        b.read(image, graph::Use::TransferSrc);
+        b.write(buffer, graph::Use::TransferDst);
+      },
+      [image, buffer](graph::PassContext& pc) {
+        const rhi::Image& img = pc.image(image);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {img.aspect(), 0, 0, img.desc().layers};
+        region.imageExtent = {img.desc().width, img.desc().height, 1};
+        vkCmdCopyImageToBuffer(pc.cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, pc.buffer(buffer).handle(), 1,
+                               &region);
+      });
+  // The host reads after the frame's timeline value: make the copy visible to it.
+  graph.addPass(
+      "host-visible", [&](graph::PassBuilder& b) {
+        b.read(buffer, graph::Use::HostRead);
+        b.sideEffect();
+      },
+      [](graph::PassContext&) {});
+}
+
+} // namespace rayster::render

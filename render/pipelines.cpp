@@ -1,0 +1,51 @@
+#include "render/pipelines.h"
+
+#include "shaders/shared/types.h"
+
+namespace rayster::render {
+namespace {
+constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+constexpr VkDescriptorType kTlas = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
+} // namespace
+
+Pipelines Pipelines::create(rhi::Context& ctx) {
+  Pipelines p;
+  rhi::GraphicsPipelineDesc g;
+  g.vertex = "gbuffer.vert";
+  g.fragment = "gbuffer.frag";
+  g.colorFormats = {kNormalFormat, kAlbedoFormat, kMaterialFormat, kEmissiveFormat, kIdFormat};
+  g.depthFormat = kDepthFormat;
+  g.bindings = {{0, kUniform}};
+  g.pushConstantBytes = 8;
+  p.gbufferRaster = rhi::createGraphicsPipeline(ctx, g);
+
+  rhi::RayTracingPipelineDesc primary;
+  primary.raygen = "gbuffer.rgen";
+  primary.miss = {"primary.rmiss"};
+  primary.hitGroups = {{"primary.rchit", "", ""}};
+  primary.bindings = {{0, kUniform}, {1, kTlas},    {2, kStorage}, {3, kStorage},
+                      {4, kStorage}, {5, kStorage}, {6, kStorage}, {7, kStorage}};
+  p.gbufferTraced = rhi::RayTracingPipeline(ctx, primary);
+
+  // Shadow rays skip closest hit and never need any-hit while all geometry is opaque: the hit
+  // group is empty, the miss shader marks visibility.
+  rhi::RayTracingPipelineDesc shadow;
+  shadow.raygen = "shadows.rgen";
+  shadow.miss = {"shadow.rmiss"};
+  shadow.hitGroups = {{"", "", ""}};
+  shadow.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kStorage}};
+  p.shadows = rhi::RayTracingPipeline(ctx, shadow);
+
+  const rhi::Binding accumulate[] = {{1, kStorage}, {2, kStorage}, {3, kStorage}};
+  p.shadowAccumulate = rhi::createComputePipeline(ctx, "shadow_accumulate.comp", accumulate, 16);
+  const rhi::Binding lighting[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled},
+                                   {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage}};
+  p.lighting = rhi::createComputePipeline(ctx, "lighting.comp", lighting, 0);
+  const rhi::Binding tone[] = {{1, kSampled}, {2, kStorage}};
+  p.tonemap = rhi::createComputePipeline(ctx, "tonemap.comp", tone, 16);
+  return p;
+}
+
+} // namespace rayster::render

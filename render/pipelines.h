@@ -1,0 +1,32 @@
+#pragma once
+// Every pipeline of the hybrid frame, created once per renderer.
+#include "rhi/pipelines.h"
+#include "rhi/rt_pipeline.h"
+
+namespace rayster::render {
+
+// G-buffer formats (TECHNIQUES.md §1); both producers write the same formats except depth.
+inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+inline constexpr VkFormat kTracedDepthFormat = VK_FORMAT_R32_SFLOAT;
+inline constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SNORM;
+inline constexpr VkFormat kAlbedoFormat = VK_FORMAT_R8G8B8A8_UNORM;
+inline constexpr VkFormat kMaterialFormat = VK_FORMAT_R8G8B8A8_UNORM;
+inline constexpr VkFormat kEmissiveFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kIdFormat = VK_FORMAT_R32_UINT;
+inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
+inline constexpr VkFormat kVisibilityFormat = VK_FORMAT_R16_SFLOAT;
+inline constexpr VkFormat kVisibilityHistoryFormat = VK_FORMAT_R32_SFLOAT;  // accumulated: never 8 or 16 bits
+
+struct Pipelines {
+  rhi::Pipeline gbufferRaster;
+  rhi::RayTracingPipeline gbufferTraced;
+  rhi::RayTracingPipeline shadows;
+  rhi::Pipeline shadowAccumulate;
+  rhi::Pipeline lighting;
+  rhi::Pipeline tonemap;
+
+  static Pipelines create(rhi::Context& ctx);
+};
+
+} // namespace rayster::render

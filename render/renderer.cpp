@@ -1,0 +1,203 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/half.h"
+#include "core/log.h"
+#include "graph/graph.h"
+#include "render/gpu_scene.h"
+#include "render/passes/passes.h"
+#include "render/pipelines.h"
+#include "rhi/commands.h"
+#include "rhi/context.h"
+#include "shaders/shared/types.h"
+
+namespace rayster::render {
+
+const char* primaryName(Primary p) {
+  switch (p) {
+    case Primary::Raster: return "raster";
+    case Primary::Traced: return "rt";
+    default: return "auto";
+  }
+}
+
+struct Renderer::Impl {
+  rhi::Context& ctx;
+  const scene::Scene& scene;
+  GpuScene gpu;
+  Pipelines pipelines;
+  rhi::Sampler nearest;
+  rhi::Buffer constants;
+  graph::TransientPool transients;
+  rhi::CommandList commands;
+  rhi::TimestampPool timers;
+  // Shadow history: two images, written alternately (never read and written by one dispatch).
+  rhi::Image shadowHistory[2];
+  graph::ResourceState shadowHistoryState[2];
+  uint32_t frameIndex = 0;
+
+  Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
+      : ctx(c), scene(s), gpu(std::move(g)), pipelines(Pipelines::create(c)),
+        nearest(c, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
+        constants(c, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, rhi::MemoryUsage::Upload,
+                  "frame-constants"),
+        commands(c), timers(c, 32) {}
+
+  uint32_t shadowLights() const { return std::min(gpu.lightCount, gpu::kMaxShadowLights); }
+
+  void writeConstants(const RenderSettings& s, const scene::Camera& cam) {
+    gpu::FrameConstants fc{};
+    const float aspect = float(s.width) / float(s.height);
+    glm::mat4 view = glm::lookAt(cam.position, cam.target, cam.up);
+    glm::mat4 proj = glm::perspective(cam.yFov, aspect, cam.zNear, cam.zFar);
+    proj[1][1] *= -1.0f;  // Vulkan clip space: y points down
+    fc.clipFromWorld = proj * view;
+    fc.worldFromClip = glm::inverse(fc.clipFromWorld);
+    fc.cameraPosition = glm::vec4(cam.position, 1.0f);
+    fc.ambient = glm::vec4(scene.ambient, 0.0f);
+    fc.size = {s.width, s.height};
+    fc.frameIndex = frameIndex;
+    fc.seed = s.seed;
+    fc.lightCount = gpu.lightCount;
+    fc.shadowLightCount = shadowLights();
+    fc.exposure = std::exp2(s.exposureEv);
+    fc.geometries = gpu.geometries.address();
+    fc.instances = gpu.instances.address();
+    fc.materials = gpu.materials.address();
+    fc.lights = gpu.lights.address();
+    std::memcpy(constants.mapped(), &fc, sizeof(fc));
+  }
+
+  void ensureHistory(const RenderSettings& s) {
+    rhi::ImageDesc desc{kVisibilityHistoryFormat, s.width, s.height, std::max(shadowLights(), 1u),
+                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true};
+    for (int i = 0; i < 2; ++i) {
+      if (shadowHistory[i] && shadowHistory[i].desc() == desc) continue;
+      shadowHistory[i] = rhi::Image(ctx, desc, i ? "shadow-history-1" : "shadow-history-0");
+      shadowHistoryState[i] = {};
+    }
+  }
+
+  // Times one G-buffer producer alone: a warm-up frame, then a measured one.
+  double timeProducer(const RenderSettings& s, Primary p) {
+    double ms = 0;
+    for (int run = 0; run < 2; ++run) {
+      graph::RenderGraph graph(&ctx, &transients);
+      FrameInputs in{pipelines, gpu, constants, nearest, {s.width, s.height}};
+      GBuffer gb = p == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
+      graph.addPass("keep", [&](graph::PassBuilder& b) {
+        b.read(gb.normals, graph::Use::SampledCompute);
+        b.sideEffect();
+      }, [](graph::PassContext&) {});
+      VkCommandBuffer cmd = commands.begin();
+      timers.reset(cmd);
+      graph.execute(cmd, &timers);
+      ctx.wait(commands.submit());
+      for (auto& t : timers.read())
+        if (t.name.rfind("gbuffer-", 0) == 0) ms = t.ms;
+    }
+    return ms;
+  }
+
+  Result<RenderOutput> render(const RenderSettings& s) {
+    const scene::Camera* cam = &scene.cameras.front();
+    if (!s.camera.empty()) {
+      auto it = std::find_if(scene.cameras.begin(), scene.cameras.end(),
+                             [&](const scene::Camera& c) { return c.name == s.camera; });
+      if (it == scene.cameras.end()) return makeError(ExitCode::BadArguments, "the scene has no camera named '{}'", s.camera);
+      cam = &*it;
+    }
+    RenderOutput out;
+    frameIndex = 0;
+    writeConstants(s, *cam);
+    out.primaryUsed = s.primary;
+    if (s.primary == Primary::Auto) {
+      // On the H100 the raster G-buffer costs many times the traced one; elsewhere raster is cheap.
+      out.rasterGBufferMs = timeProducer(s, Primary::Raster);
+      out.tracedGBufferMs = timeProducer(s, Primary::Traced);
+      out.primaryUsed = out.tracedGBufferMs >= 0 && out.tracedGBufferMs < out.rasterGBufferMs ? Primary::Traced
+                                                                                            : Primary::Raster;
+      log::info("primary: auto chose {} (raster G-buffer {:.3f} ms, traced {:.3f} ms)", primaryName(out.primaryUsed),
+                out.rasterGBufferMs, out.tracedGBufferMs);
+    }
+
+    ensureHistory(s);
+    const size_t pixels = size_t(s.width) * s.height;
+    rhi::Buffer ldrReadback(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
+    rhi::Buffer hdrReadback(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "hdr-readback");
+    graph::ResourceState ldrState, hdrState;
+    std::map<std::string, std::vector<double>> passTimes;
+    std::vector<std::string> passOrder;
+
+    for (uint32_t f = 0; f < s.frames; ++f) {
+      frameIndex = f;
+      writeConstants(s, *cam);
+      const bool last = f + 1 == s.frames;
+      graph::RenderGraph graph(&ctx, &transients);
+      FrameInputs in{pipelines, gpu, constants, nearest, {s.width, s.height}};
+
+      GBuffer gb = out.primaryUsed == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
+      graph::ImageHandle raw = traceShadows(graph, in, gb, shadowLights());
+      graph::ImageHandle prev = graph.importImage("shadow-history-prev", &shadowHistory[f % 2], &shadowHistoryState[f % 2]);
+      graph::ImageHandle next =
+          graph.importImage("shadow-history", &shadowHistory[(f + 1) % 2], &shadowHistoryState[(f + 1) % 2]);
+      graph::ImageHandle visibility = accumulateShadows(graph, in, raw, prev, next, f);
+      graph::ImageHandle hdr = shadeLighting(graph, in, gb, visibility);
+      graph::ImageHandle ldr = tonemap(graph, in, hdr, std::exp2(s.exposureEv), s.seed);
+      if (last) {
+        readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));
+        readback(graph, hdr, graph.importBuffer("hdr-readback", &hdrReadback, &hdrState));
+      }
+
+      VkCommandBuffer cmd = commands.begin();
+      timers.reset(cmd);
+      graph.execute(cmd, &timers);
+      ctx.wait(commands.submit());
+      for (auto& t : timers.read()) {
+        if (t.name == "readback" || t.name == "host-visible") continue;
+        if (!passTimes.count(t.name)) passOrder.push_back(t.name);
+        passTimes[t.name].push_back(t.ms);
+      }
+      ctx.collectGarbage();
+    }
+
+    out.ldr = Image8::make(int(s.width), int(s.height));
+    std::memcpy(out.ldr.rgba.data(), ldrReadback.mapped(), pixels * 4);
+    out.hdr = ImageF::make(int(s.width), int(s.height));
+    const uint16_t* halves = static_cast<const uint16_t*>(hdrReadback.mapped());
+    for (size_t i = 0; i < pixels * 4; ++i) out.hdr.rgba[i] = halfToFloat(halves[i]);
+
+    for (const std::string& name : passOrder) {
+      std::vector<double> v = passTimes[name];
+      std::sort(v.begin(), v.end());
+      PassStats ps{name, v[v.size() / 2], v.front(), v[std::min(v.size() - 1, size_t(std::ceil(0.95 * v.size())) - 1)],
+                   uint32_t(v.size())};
+      out.frameMedianMs += ps.medianMs;
+      out.passes.push_back(ps);
+    }
+    return out;
+  }
+};
+
+Renderer::Renderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Renderer::~Renderer() = default;
+
+Result<std::unique_ptr<Renderer>> Renderer::create(rhi::Context& ctx, const scene::Scene& scene) {
+  if (scene.cameras.empty()) return makeError(ExitCode::BadInput, "scene '{}' has no camera", scene.name);
+  auto gpu = uploadScene(ctx, scene);
+  if (!gpu) return gpu.error();
+  log::debug("scene '{}': {} triangles, BLAS {} KiB (compacted from {} KiB), built in {:.1f} ms", scene.name,
+             gpu->triangleCount, gpu->accelStats.compactedBytes / 1024, gpu->accelStats.builtBytes / 1024,
+             gpu->accelBuildMs);
+  return std::unique_ptr<Renderer>(new Renderer(std::make_unique<Impl>(ctx, scene, std::move(gpu.value()))));
+}
+
+Result<RenderOutput> Renderer::render(const RenderSettings& settings) { return impl_->render(settings); }
+
+} // namespace rayster::render

@@ -1,0 +1,58 @@
+#pragma once
+// Renders a scene headless with the hybrid frame: G-buffer (raster or traced primary rays),
+// ray-traced shadows accumulated over frames, deferred lighting, tonemapping, readback.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "scene/scene.h"
+
+namespace rayster::rhi {
+class Context;
+}
+
+namespace rayster::render {
+
+enum class Primary { Raster, Traced, Auto };
+const char* primaryName(Primary p);
+
+struct RenderSettings {
+  uint32_t width = 1280, height = 720;
+  uint32_t frames = 16;  // shadow samples accumulated for the static camera
+  uint32_t seed = 0;
+  Primary primary = Primary::Auto;
+  float exposureEv = 0.0f;
+  std::string camera;  // name; empty: the scene's first camera
+};
+
+struct PassStats {
+  std::string name;
+  double medianMs = 0, minMs = 0, p95Ms = 0;
+  uint32_t samples = 0;
+};
+
+struct RenderOutput {
+  Image8 ldr;  // tonemapped, sRGB-encoded
+  ImageF hdr;  // linear radiance
+  Primary primaryUsed = Primary::Raster;
+  double rasterGBufferMs = -1, tracedGBufferMs = -1;  // measured by --primary auto, else -1
+  std::vector<PassStats> passes;                      // GPU time per pass over all frames
+  double frameMedianMs = 0;                           // sum of the passes' medians
+};
+
+class Renderer {
+ public:
+  static Result<std::unique_ptr<Renderer>> create(rhi::Context& ctx, const scene::Scene& scene);
+  ~Renderer();
+  Result<RenderOutput> render(const RenderSettings& settings);
+
+ private:
+  struct Impl;
+  explicit Renderer(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+} // namespace rayster::render

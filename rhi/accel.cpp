@@ -1,0 +1,202 @@
+#include "rhi/accel.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "rhi/commands.h"
+#include "rhi/context.h"
+#include "rhi/vk_check.h"
+
+namespace rayster::rhi {
+
+AccelerationStructure& AccelerationStructure::operator=(AccelerationStructure&& o) noexcept {
+  if (this != &o) {
+    reset();
+    ctx_ = std::exchange(o.ctx_, nullptr);
+    buffer_ = std::move(o.buffer_);
+    handle_ = std::exchange(o.handle_, VK_NULL_HANDLE);
+    address_ = std::exchange(o.address_, 0);
+  }
+  return *this;
+}
+
+void AccelerationStructure::reset() {
+  if (handle_)
+    ctx_->retire([dev = ctx_->device(), h = handle_] { vkDestroyAccelerationStructureKHR(dev, h, nullptr); });
+  handle_ = VK_NULL_HANDLE;
+  buffer_.reset();  // retired after the handle, so destroyed after it too
+}
+
+AccelerationStructure createAccelerationStructure(Context& ctx, VkAccelerationStructureTypeKHR type, VkDeviceSize size,
+                                                  const char* name) {
+  AccelerationStructure as;
+  as.ctx_ = &ctx;
+  as.buffer_ = Buffer(ctx, size, VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR, MemoryUsage::GpuOnly, name);
+  VkAccelerationStructureCreateInfoKHR ci{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_CREATE_INFO_KHR};
+  ci.buffer = as.buffer_.handle();
+  ci.size = size;
+  ci.type = type;
+  VK_CHECK(vkCreateAccelerationStructureKHR(ctx.device(), &ci, nullptr, &as.handle_));
+  VkAccelerationStructureDeviceAddressInfoKHR ai{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR};
+  ai.accelerationStructure = as.handle_;
+  as.address_ = vkGetAccelerationStructureDeviceAddressKHR(ctx.device(), &ai);
+  ctx.setName(VK_OBJECT_TYPE_ACCELERATION_STRUCTURE_KHR, uint64_t(as.handle_), name);
+  return as;
+}
+
+namespace {
+
+void asBuildBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+  VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  b.srcStageMask = VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR;
+  b.srcAccessMask = VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
+  b.dstStageMask = dstStage;
+  b.dstAccessMask = dstAccess;
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.memoryBarrierCount = 1;
+  dep.pMemoryBarriers = &b;
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+VkDeviceSize alignUp(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
+
+} // namespace
+
+std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std::vector<BlasGeometry>> meshes,
+                                               AccelBuildStats* stats) {
+  const size_t n = meshes.size();
+  std::vector<std::vector<VkAccelerationStructureGeometryKHR>> geoms(n);
+  std::vector<std::vector<VkAccelerationStructureBuildRangeInfoKHR>> ranges(n);
+  std::vector<VkAccelerationStructureBuildGeometryInfoKHR> infos(n);
+  std::vector<AccelerationStructure> built(n);
+  std::vector<VkDeviceSize> scratchOffsets(n);
+  VkDeviceSize scratchTotal = 0;
+  const VkDeviceSize scratchAlign = std::max<uint32_t>(ctx.caps().minScratchOffsetAlignment, 1);
+
+  for (size_t m = 0; m < n; ++m) {
+    std::vector<uint32_t> maxPrims;
+    for (const BlasGeometry& g : meshes[m]) {
+      VkAccelerationStructureGeometryKHR geo{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
+      geo.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
+      geo.flags = g.opaque ? VK_GEOMETRY_OPAQUE_BIT_KHR : 0;
+      auto& t = geo.geometry.triangles;
+      t.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR;
+      t.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;
+      t.vertexData.deviceAddress = g.vertexAddress;
+      t.vertexStride = g.vertexStride;
+      t.maxVertex = g.vertexCount - 1;
+      t.indexType = VK_INDEX_TYPE_UINT32;
+      t.indexData.deviceAddress = g.indexAddress;
+      geoms[m].push_back(geo);
+      // primitiveCount is triangles, not vertices (a published mistake).
+      const uint32_t triangles = g.indexCount / 3;
+      ranges[m].push_back({triangles, 0, 0, 0});
+      maxPrims.push_back(triangles);
+      if (stats) stats->triangles += triangles;
+    }
+    VkAccelerationStructureBuildGeometryInfoKHR& info = infos[m];
+    info = {VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
+    info.type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR;
+    info.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR |
+                 VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_COMPACTION_BIT_KHR;
+    info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
+    info.geometryCount = uint32_t(geoms[m].size());
+    info.pGeometries = geoms[m].data();
+    VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+    vkGetAccelerationStructureBuildSizesKHR(ctx.device(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info,
+                                            maxPrims.data(), &sizes);
+    built[m] = createAccelerationStructure(ctx, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR,
+                                           sizes.accelerationStructureSize, "blas");
+    info.dstAccelerationStructure = built[m].handle();
+    scratchOffsets[m] = scratchTotal;
+    scratchTotal = alignUp(scratchTotal + sizes.buildScratchSize, scratchAlign);
+    if (stats) stats->builtBytes += sizes.accelerationStructureSize;
+  }
+  if (n == 0) return built;
+
+  Buffer scratch(ctx, scratchTotal + scratchAlign, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly,
+                 "blas-scratch");
+  const VkDeviceAddress scratchBase = alignUp(scratch.address(), scratchAlign);
+  std::vector<const VkAccelerationStructureBuildRangeInfoKHR*> rangePtrs(n);
+  for (size_t m = 0; m < n; ++m) {
+    infos[m].scratchData.deviceAddress = scratchBase + scratchOffsets[m];
+    rangePtrs[m] = ranges[m].data();
+  }
+
+  VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  qci.queryType = VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR;
+  qci.queryCount = uint32_t(n);
+  VkQueryPool pool = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateQueryPool(ctx.device(), &qci, nullptr, &pool));
+  {
+    OneShot cmd(ctx);
+    vkCmdResetQueryPool(cmd, pool, 0, uint32_t(n));
+    vkCmdBuildAccelerationStructuresKHR(cmd, uint32_t(n), infos.data(), rangePtrs.data());
+    asBuildBarrier(cmd, VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                   VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR);
+    std::vector<VkAccelerationStructureKHR> handles;
+    for (auto& b : built) handles.push_back(b.handle());
+    vkCmdWriteAccelerationStructuresPropertiesKHR(cmd, uint32_t(n), handles.data(),
+                                                  VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR, pool, 0);
+    cmd.submitAndWait();
+  }
+  std::vector<VkDeviceSize> compacted(n);
+  VK_CHECK(vkGetQueryPoolResults(ctx.device(), pool, 0, uint32_t(n), n * sizeof(VkDeviceSize), compacted.data(),
+                                 sizeof(VkDeviceSize), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  vkDestroyQueryPool(ctx.device(), pool, nullptr);
+
+  std::vector<AccelerationStructure> result(n);
+  OneShot cmd(ctx);
+  for (size_t m = 0; m < n; ++m) {
+    result[m] = createAccelerationStructure(ctx, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, compacted[m], "blas");
+    VkCopyAccelerationStructureInfoKHR copy{VK_STRUCTURE_TYPE_COPY_ACCELERATION_STRUCTURE_INFO_KHR};
+    copy.src = built[m].handle();
+    copy.dst = result[m].handle();
+    copy.mode = VK_COPY_ACCELERATION_STRUCTURE_MODE_COMPACT_KHR;
+    vkCmdCopyAccelerationStructureKHR(cmd, &copy);
+    if (stats) stats->compactedBytes += compacted[m];
+  }
+  asBuildBarrier(cmd, VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR | VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR,
+                 VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR);
+  cmd.submitAndWait();
+  return result;  // `built` (uncompacted) is retired here
+}
+
+AccelerationStructure buildTlas(Context& ctx, std::span<const VkAccelerationStructureInstanceKHR> instances,
+                                AccelBuildStats* stats) {
+  const uint32_t count = uint32_t(instances.size());
+  Buffer instanceBuffer = createBufferWithData(
+      ctx, std::as_bytes(instances),
+      VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR, "tlas-instances");
+
+  VkAccelerationStructureGeometryKHR geo{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
+  geo.geometryType = VK_GEOMETRY_TYPE_INSTANCES_KHR;
+  geo.geometry.instances.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR;
+  geo.geometry.instances.data.deviceAddress = instanceBuffer.address();
+  VkAccelerationStructureBuildGeometryInfoKHR info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
+  info.type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR;
+  info.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR;
+  info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
+  info.geometryCount = 1;
+  info.pGeometries = &geo;
+  VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+  vkGetAccelerationStructureBuildSizesKHR(ctx.device(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info, &count,
+                                          &sizes);
+  AccelerationStructure tlas =
+      createAccelerationStructure(ctx, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, sizes.accelerationStructureSize, "tlas");
+  const VkDeviceSize align = std::max<uint32_t>(ctx.caps().minScratchOffsetAlignment, 1);
+  Buffer scratch(ctx, sizes.buildScratchSize + align, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly,
+                 "tlas-scratch");
+  info.dstAccelerationStructure = tlas.handle();
+  info.scratchData.deviceAddress = alignUp(scratch.address(), align);
+  VkAccelerationStructureBuildRangeInfoKHR range{count, 0, 0, 0};
+  const VkAccelerationStructureBuildRangeInfoKHR* rangePtr = &range;
+  OneShot cmd(ctx);
+  vkCmdBuildAccelerationStructuresKHR(cmd, 1, &info, &rangePtr);
+  asBuildBarrier(cmd, VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR);
+  cmd.submitAndWait();
+  if (stats) stats->tlasBytes = sizes.accelerationStructureSize;
+  return tlas;
+}
+
+} // namespace rayster::rhi

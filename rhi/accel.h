@@ -1,0 +1,63 @@
+#pragma once
+// Acceleration structures: one BLAS per unique mesh (one geometry per primitive), compacted; a TLAS
+// of instances whose custom index points into the instance table (TECHNIQUES.md §5).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <volk.h>
+
+#include "rhi/resources.h"
+
+namespace rayster::rhi {
+
+class Context;
+
+class AccelerationStructure {
+ public:
+  AccelerationStructure() = default;
+  ~AccelerationStructure() { reset(); }
+  AccelerationStructure(AccelerationStructure&& o) noexcept { *this = std::move(o); }
+  AccelerationStructure& operator=(AccelerationStructure&& o) noexcept;
+  void reset();
+  VkAccelerationStructureKHR handle() const { return handle_; }
+  VkDeviceAddress address() const { return address_; }
+  VkDeviceSize size() const { return buffer_.size(); }
+
+ private:
+  friend AccelerationStructure createAccelerationStructure(Context&, VkAccelerationStructureTypeKHR, VkDeviceSize,
+                                                           const char*);
+  Context* ctx_ = nullptr;
+  Buffer buffer_;
+  VkAccelerationStructureKHR handle_ = VK_NULL_HANDLE;
+  VkDeviceAddress address_ = 0;
+};
+
+AccelerationStructure createAccelerationStructure(Context& ctx, VkAccelerationStructureTypeKHR type, VkDeviceSize size,
+                                                  const char* name);
+
+struct BlasGeometry {
+  VkDeviceAddress vertexAddress = 0;  // R32G32B32 positions at offset 0 of each vertex
+  uint32_t vertexStride = 0;
+  uint32_t vertexCount = 0;
+  VkDeviceAddress indexAddress = 0;   // uint32 triangle list
+  uint32_t indexCount = 0;
+  bool opaque = true;                 // false: any-hit shaders run (alpha MASK)
+};
+
+struct AccelBuildStats {
+  uint64_t builtBytes = 0;      // BLAS bytes before compaction
+  uint64_t compactedBytes = 0;  // BLAS bytes after compaction
+  uint64_t tlasBytes = 0;
+  uint64_t triangles = 0;
+};
+
+// Builds one compacted BLAS per mesh; meshes[i] lists the geometries (primitives) of mesh i.
+std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std::vector<BlasGeometry>> meshes,
+                                               AccelBuildStats* stats);
+
+// Builds a TLAS over `instances` (their accelerationStructureReference are BLAS addresses).
+AccelerationStructure buildTlas(Context& ctx, std::span<const VkAccelerationStructureInstanceKHR> instances,
+                                AccelBuildStats* stats);
+
+} // namespace rayster::rhi

@@ -1,0 +1,378 @@
+#include "rhi/context.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <cstring>
+
+#include "core/log.h"
+#include "rhi/memory.h"
+#include "rhi/vk_check.h"
+
+namespace rayster::rhi {
+namespace {
+
+std::atomic<uint32_t> gValidationErrors{0};
+
+VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                             VkDebugUtilsMessageTypeFlagsEXT,
+                                             const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
+  if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
+    ++gValidationErrors;
+    std::fprintf(stderr, "rayster: validation error: %s\n", data->pMessage);
+  } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+    std::fprintf(stderr, "rayster: validation warning: %s\n", data->pMessage);
+  }
+  return VK_FALSE;
+}
+
+bool hasExtension(const std::vector<VkExtensionProperties>& exts, const char* name) {
+  return std::any_of(exts.begin(), exts.end(),
+                     [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+std::vector<VkExtensionProperties> deviceExtensions(VkPhysicalDevice pd) {
+  uint32_t n = 0;
+  vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
+  std::vector<VkExtensionProperties> exts(n);
+  vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, exts.data());
+  return exts;
+}
+
+// Extensions every Rayster device needs, and the ones ray tracing adds.
+constexpr const char* kRayTracingExtensions[] = {
+    VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
+    VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME,
+    VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME,
+};
+
+DeviceInfo describe(VkPhysicalDevice pd) {
+  DeviceInfo info;
+  info.handle = pd;
+  VkPhysicalDeviceRayTracingPipelinePropertiesKHR rtProps{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR};
+  VkPhysicalDeviceAccelerationStructurePropertiesKHR asProps{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  props.pNext = &driver;
+  driver.pNext = &rtProps;
+  rtProps.pNext = &asProps;
+  vkGetPhysicalDeviceProperties2(pd, &props);
+  info.name = props.properties.deviceName;
+  info.type = props.properties.deviceType;
+  info.apiVersion = props.properties.apiVersion;
+  info.driverName = driver.driverName;
+  info.driverInfo = driver.driverInfo;
+
+  VkPhysicalDeviceMemoryProperties mem;
+  vkGetPhysicalDeviceMemoryProperties(pd, &mem);
+  for (uint32_t i = 0; i < mem.memoryHeapCount; ++i)
+    if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) info.deviceLocalBytes += mem.memoryHeaps[i].size;
+
+  auto exts = deviceExtensions(pd);
+  Capabilities& c = info.caps;
+  c.accelerationStructure = hasExtension(exts, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) &&
+                            hasExtension(exts, VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME);
+  c.rayTracingPipeline = hasExtension(exts, VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME);
+  c.rayQuery = hasExtension(exts, VK_KHR_RAY_QUERY_EXTENSION_NAME);
+  c.shaderGroupHandleSize = rtProps.shaderGroupHandleSize;
+  c.shaderGroupHandleAlignment = rtProps.shaderGroupHandleAlignment;
+  c.shaderGroupBaseAlignment = rtProps.shaderGroupBaseAlignment;
+  c.maxRayRecursionDepth = rtProps.maxRayRecursionDepth;
+  c.minScratchOffsetAlignment = asProps.minAccelerationStructureScratchOffsetAlignment;
+  c.timestampPeriodNs = props.properties.limits.timestampPeriod;
+  c.timestamps = props.properties.limits.timestampComputeAndGraphics;
+
+  if (VK_API_VERSION_MINOR(info.apiVersion) < 3 && VK_API_VERSION_MAJOR(info.apiVersion) == 1)
+    info.unsuitableReason = "supports Vulkan 1." + std::to_string(VK_API_VERSION_MINOR(info.apiVersion)) + ", Rayster needs 1.3";
+  else if (!hasExtension(exts, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
+    info.unsuitableReason = "lacks VK_KHR_push_descriptor";
+  return info;
+}
+
+int score(const DeviceInfo& d) {
+  int s = 0;
+  if (d.type == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU) s += 1000;
+  if (d.type == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU) s += 500;
+  if (d.caps.rayTracing()) s += 2000;
+  return s;
+}
+
+Result<VkInstance> createInstance(bool validation, bool& debugUtils) {
+  if (volkInitialize() != VK_SUCCESS)
+    return makeError(ExitCode::NoDevice, "no Vulkan loader found (libvulkan.so.1); install a Vulkan driver");
+  if (volkGetInstanceVersion() < VK_API_VERSION_1_3)
+    return makeError(ExitCode::NoDevice, "the Vulkan loader is older than 1.3");
+
+  uint32_t n = 0;
+  vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr);
+  std::vector<VkExtensionProperties> available(n);
+  vkEnumerateInstanceExtensionProperties(nullptr, &n, available.data());
+  std::vector<const char*> exts;
+  debugUtils = hasExtension(available, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  if (debugUtils) exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+
+  std::vector<const char*> layers;
+  if (validation) {
+    uint32_t ln = 0;
+    vkEnumerateInstanceLayerProperties(&ln, nullptr);
+    std::vector<VkLayerProperties> lp(ln);
+    vkEnumerateInstanceLayerProperties(&ln, lp.data());
+    bool found = std::any_of(lp.begin(), lp.end(), [](const VkLayerProperties& l) {
+      return std::strcmp(l.layerName, "VK_LAYER_KHRONOS_validation") == 0;
+    });
+    if (!found)
+      return makeError(ExitCode::NoDevice, "validation was requested but VK_LAYER_KHRONOS_validation is not installed "
+                                           "(apt-get install vulkan-validationlayers)");
+    layers.push_back("VK_LAYER_KHRONOS_validation");
+  }
+
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "rayster";
+  app.pEngineName = "rayster";
+  app.apiVersion = VK_API_VERSION_1_3;
+  // Synchronization validation checks the graph's barriers; GPU-assisted validation is too slow here.
+  VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+  VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = enables;
+  VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  ci.pNext = validation ? &features : nullptr;
+  ci.pApplicationInfo = &app;
+  ci.enabledExtensionCount = uint32_t(exts.size());
+  ci.ppEnabledExtensionNames = exts.data();
+  ci.enabledLayerCount = uint32_t(layers.size());
+  ci.ppEnabledLayerNames = layers.data();
+  VkInstance instance = VK_NULL_HANDLE;
+  VkResult r = vkCreateInstance(&ci, nullptr, &instance);
+  if (r == VK_ERROR_INCOMPATIBLE_DRIVER || r == VK_ERROR_INITIALIZATION_FAILED)
+    return makeError(ExitCode::NoDevice, "no Vulkan driver could be loaded ({})", resultName(r));
+  if (r != VK_SUCCESS) return makeError(ExitCode::NoDevice, "vkCreateInstance failed: {}", resultName(r));
+  volkLoadInstanceOnly(instance);
+  return instance;
+}
+
+std::vector<DeviceInfo> enumerate(VkInstance instance) {
+  uint32_t n = 0;
+  vkEnumeratePhysicalDevices(instance, &n, nullptr);
+  std::vector<VkPhysicalDevice> pds(n);
+  vkEnumeratePhysicalDevices(instance, &n, pds.data());
+  std::vector<DeviceInfo> out;
+  for (VkPhysicalDevice pd : pds) out.push_back(describe(pd));
+  return out;
+}
+
+} // namespace
+
+const char* DeviceInfo::typeName() const {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+    default: return "other";
+  }
+}
+
+Result<std::vector<DeviceInfo>> Context::listDevices() {
+  bool debugUtils = false;
+  auto instance = createInstance(false, debugUtils);
+  if (!instance) return instance.error();
+  auto devices = enumerate(*instance);
+  vkDestroyInstance(*instance, nullptr);
+  return devices;
+}
+
+Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
+  std::unique_ptr<Context> ctx(new Context());
+  auto instance = createInstance(options.validation, ctx->debugUtils_);
+  if (!instance) return instance.error();
+  ctx->instance_ = *instance;
+  ctx->validation_ = options.validation;
+  if (options.validation && ctx->debugUtils_) {
+    VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
+    mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    mci.pfnUserCallback = debugCallback;
+    VK_CHECK(vkCreateDebugUtilsMessengerEXT(ctx->instance_, &mci, nullptr, &ctx->messenger_));
+  }
+
+  auto devices = enumerate(ctx->instance_);
+  if (devices.empty()) return makeError(ExitCode::NoDevice, "no Vulkan device found (is a Vulkan driver installed?)");
+  std::vector<DeviceInfo> candidates;
+  std::string rejected;
+  for (auto& d : devices) {
+    if (!options.deviceFilter.empty() && d.name.find(options.deviceFilter) == std::string::npos) continue;
+    if (!d.unsuitableReason.empty()) {
+      rejected += (rejected.empty() ? "" : "; ") + d.name + " " + d.unsuitableReason;
+      continue;
+    }
+    candidates.push_back(d);
+  }
+  if (candidates.empty()) {
+    if (!options.deviceFilter.empty() && rejected.empty())
+      return makeError(ExitCode::NoDevice, "no Vulkan device matches '{}'", options.deviceFilter);
+    return makeError(ExitCode::NoDevice, "no usable Vulkan device: {}", rejected);
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const DeviceInfo& a, const DeviceInfo& b) { return score(a) > score(b); });
+  ctx->info_ = candidates.front();
+  if (options.requireRayTracing && !ctx->info_.caps.rayTracing())
+    return makeError(ExitCode::MissingCapability,
+                     "{} has no ray-tracing pipelines (VK_KHR_ray_tracing_pipeline and VK_KHR_acceleration_structure); "
+                     "on lavapipe install mesa-vulkan-drivers from bookworm-backports",
+                     ctx->info_.name);
+
+  // One queue that does graphics, compute and transfer: enough for a frame recorded in order.
+  uint32_t qn = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(ctx->info_.handle, &qn, nullptr);
+  std::vector<VkQueueFamilyProperties> qf(qn);
+  vkGetPhysicalDeviceQueueFamilyProperties(ctx->info_.handle, &qn, qf.data());
+  ctx->queueFamily_ = UINT32_MAX;
+  for (uint32_t i = 0; i < qn; ++i)
+    if ((qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) {
+      ctx->queueFamily_ = i;
+      break;
+    }
+  if (ctx->queueFamily_ == UINT32_MAX)
+    return makeError(ExitCode::MissingCapability, "{} has no graphics+compute queue", ctx->info_.name);
+  if (qf[ctx->queueFamily_].timestampValidBits == 0) ctx->info_.caps.timestamps = false;
+
+  const bool rt = ctx->info_.caps.rayTracing();
+  std::vector<const char*> exts = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+  if (rt) exts.insert(exts.end(), std::begin(kRayTracingExtensions), std::end(kRayTracingExtensions));
+
+  VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  vkGetPhysicalDeviceFeatures2(ctx->info_.handle, &supported);
+
+  VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtFeatures{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+  rtFeatures.rayTracingPipeline = VK_TRUE;
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR asFeatures{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  asFeatures.accelerationStructure = VK_TRUE;
+  asFeatures.pNext = &rtFeatures;
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  f13.synchronization2 = VK_TRUE;
+  f13.dynamicRendering = VK_TRUE;
+  f13.maintenance4 = VK_TRUE;
+  f13.pNext = rt ? &asFeatures : nullptr;
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  f12.bufferDeviceAddress = VK_TRUE;
+  f12.scalarBlockLayout = VK_TRUE;
+  f12.timelineSemaphore = VK_TRUE;
+  f12.hostQueryReset = VK_TRUE;
+  f12.descriptorIndexing = VK_TRUE;
+  f12.runtimeDescriptorArray = VK_TRUE;
+  f12.descriptorBindingPartiallyBound = VK_TRUE;
+  f12.shaderSampledImageArrayNonUniformIndexing = VK_TRUE;
+  f12.pNext = &f13;
+  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  features.features.shaderInt64 = supported.features.shaderInt64;
+  features.features.shaderStorageImageExtendedFormats = supported.features.shaderStorageImageExtendedFormats;
+  features.features.samplerAnisotropy = supported.features.samplerAnisotropy;
+  // gl_PrimitiveID in fragment shaders (the raster G-buffer's geometric normal) needs it.
+  features.features.geometryShader = supported.features.geometryShader;
+  features.pNext = &f12;
+  if (!supported.features.shaderInt64 || !supported.features.geometryShader)
+    return makeError(ExitCode::MissingCapability, "{} lacks shaderInt64 or geometryShader", ctx->info_.name);
+
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  qci.queueFamilyIndex = ctx->queueFamily_;
+  qci.queueCount = 1;
+  qci.pQueuePriorities = &priority;
+  VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  dci.pNext = &features;
+  dci.queueCreateInfoCount = 1;
+  dci.pQueueCreateInfos = &qci;
+  dci.enabledExtensionCount = uint32_t(exts.size());
+  dci.ppEnabledExtensionNames = exts.data();
+  VkResult r = vkCreateDevice(ctx->info_.handle, &dci, nullptr, &ctx->device_);
+  if (r == VK_ERROR_FEATURE_NOT_PRESENT || r == VK_ERROR_EXTENSION_NOT_PRESENT)
+    return makeError(ExitCode::MissingCapability, "{}: vkCreateDevice failed with {}", ctx->info_.name, resultName(r));
+  VK_CHECK(r);
+  volkLoadDevice(ctx->device_);
+  vkGetDeviceQueue(ctx->device_, ctx->queueFamily_, 0, &ctx->queue_);
+
+  VkSemaphoreTypeCreateInfo tci{VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO};
+  tci.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+  VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  sci.pNext = &tci;
+  VK_CHECK(vkCreateSemaphore(ctx->device_, &sci, nullptr, &ctx->timeline_));
+  ctx->memory_ = std::make_unique<MemoryAllocator>(*ctx);
+  log::debug("device: {} ({}, {})", ctx->info_.name, ctx->info_.typeName(), ctx->info_.driverInfo);
+  return ctx;
+}
+
+Context::~Context() {
+  if (device_) {
+    vkDeviceWaitIdle(device_);
+    for (auto& [value, destroy] : garbage_) destroy();
+    garbage_.clear();
+    memory_.reset();
+    vkDestroySemaphore(device_, timeline_, nullptr);
+    vkDestroyDevice(device_, nullptr);
+  }
+  if (messenger_) vkDestroyDebugUtilsMessengerEXT(instance_, messenger_, nullptr);
+  if (instance_) vkDestroyInstance(instance_, nullptr);
+}
+
+uint32_t Context::validationErrors() const { return gValidationErrors.load(); }
+
+uint64_t Context::submit(VkCommandBuffer cmd) {
+  VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cbi.commandBuffer = cmd;
+  VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  signal.semaphore = timeline_;
+  signal.value = ++submitted_;
+  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  si.commandBufferInfoCount = 1;
+  si.pCommandBufferInfos = &cbi;
+  si.signalSemaphoreInfoCount = 1;
+  si.pSignalSemaphoreInfos = &signal;
+  VK_CHECK(vkQueueSubmit2(queue_, 1, &si, VK_NULL_HANDLE));
+  return submitted_;
+}
+
+void Context::wait(uint64_t value) {
+  VkSemaphoreWaitInfo wi{VK_STRUCTURE_TYPE_SEMAPHORE_WAIT_INFO};
+  wi.semaphoreCount = 1;
+  wi.pSemaphores = &timeline_;
+  wi.pValues = &value;
+  VK_CHECK(vkWaitSemaphores(device_, &wi, UINT64_MAX));
+}
+
+void Context::waitIdle() { VK_CHECK(vkDeviceWaitIdle(device_)); }
+
+void Context::retire(std::function<void()> destroy) { garbage_.emplace_back(submitted_, std::move(destroy)); }
+
+void Context::collectGarbage() {
+  uint64_t done = 0;
+  VK_CHECK(vkGetSemaphoreCounterValue(device_, timeline_, &done));
+  auto keep = std::stable_partition(garbage_.begin(), garbage_.end(),
+                                    [done](const auto& g) { return g.first > done; });
+  for (auto it = keep; it != garbage_.end(); ++it) it->second();
+  garbage_.erase(keep, garbage_.end());
+}
+
+void Context::setName(VkObjectType type, uint64_t handle, const char* name) const {
+  if (!debugUtils_ || !vkSetDebugUtilsObjectNameEXT) return;
+  VkDebugUtilsObjectNameInfoEXT ni{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
+  ni.objectType = type;
+  ni.objectHandle = handle;
+  ni.pObjectName = name;
+  vkSetDebugUtilsObjectNameEXT(device_, &ni);
+}
+
+void Context::beginLabel(VkCommandBuffer cmd, const char* name) const {
+  if (!debugUtils_ || !vkCmdBeginDebugUtilsLabelEXT) return;
+  VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
+  label.pLabelName = name;
+  vkCmdBeginDebugUtilsLabelEXT(cmd, &label);
+}
+
+void Context::endLabel(VkCommandBuffer cmd) const {
+  if (!debugUtils_ || !vkCmdEndDebugUtilsLabelEXT) return;
+  vkCmdEndDebugUtilsLabelEXT(cmd);
+}
+
+} // namespace rayster::rhi

@@ -1,0 +1,103 @@
+#pragma once
+// The Vulkan instance, the chosen physical device, the logical device and its one universal queue.
+// Also owns the memory allocator, the timeline semaphore that orders submissions and the deferred
+// destruction list ("destroyed a frame later").
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <volk.h>
+
+#include "core/error.h"
+
+namespace rayster::rhi {
+
+class MemoryAllocator;
+
+struct Capabilities {
+  bool rayTracingPipeline = false;
+  bool accelerationStructure = false;
+  bool rayQuery = false;
+  bool timestamps = false;
+  uint32_t shaderGroupHandleSize = 0;
+  uint32_t shaderGroupHandleAlignment = 0;
+  uint32_t shaderGroupBaseAlignment = 0;
+  uint32_t maxRayRecursionDepth = 0;
+  uint32_t minScratchOffsetAlignment = 0;
+  float timestampPeriodNs = 1.0f;
+  bool rayTracing() const { return rayTracingPipeline && accelerationStructure; }
+};
+
+struct DeviceInfo {
+  VkPhysicalDevice handle = VK_NULL_HANDLE;
+  std::string name;
+  VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
+  uint32_t apiVersion = 0;
+  std::string driverName;
+  std::string driverInfo;
+  uint64_t deviceLocalBytes = 0;
+  Capabilities caps;
+  std::string unsuitableReason; // empty when Rayster can run on it at all
+  const char* typeName() const;
+};
+
+struct ContextOptions {
+  bool validation = false;        // Khronos validation layer + synchronization validation
+  bool requireRayTracing = true;  // fail with MissingCapability when absent
+  std::string deviceFilter;       // substring of the device name to prefer; empty: best device
+};
+
+class Context {
+ public:
+  static Result<std::unique_ptr<Context>> create(const ContextOptions& options);
+  // Lists every physical device with its capabilities (for `rayster info`), no logical device.
+  static Result<std::vector<DeviceInfo>> listDevices();
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  VkInstance instance() const { return instance_; }
+  VkDevice device() const { return device_; }
+  VkPhysicalDevice physicalDevice() const { return info_.handle; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  const DeviceInfo& info() const { return info_; }
+  const Capabilities& caps() const { return info_.caps; }
+  MemoryAllocator& memory() { return *memory_; }
+  bool validationEnabled() const { return validation_; }
+  // Validation messages of error severity seen so far; a test run fails if this is not 0.
+  uint32_t validationErrors() const;
+
+  // Submits command buffers on the queue, signalling the timeline; returns the value to wait for.
+  uint64_t submit(VkCommandBuffer cmd);
+  void wait(uint64_t timelineValue);
+  void waitIdle();
+  // Runs `destroy` once the GPU has finished every submission made so far.
+  void retire(std::function<void()> destroy);
+  // Destroys whatever retired objects the GPU no longer uses.
+  void collectGarbage();
+
+  // Debug names and labels (no-ops without VK_EXT_debug_utils).
+  void setName(VkObjectType type, uint64_t handle, const char* name) const;
+  void beginLabel(VkCommandBuffer cmd, const char* name) const;
+  void endLabel(VkCommandBuffer cmd) const;
+
+ private:
+  Context() = default;
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  uint32_t queueFamily_ = 0;
+  DeviceInfo info_;
+  bool validation_ = false;
+  bool debugUtils_ = false;
+  VkSemaphore timeline_ = VK_NULL_HANDLE;
+  uint64_t submitted_ = 0;
+  std::vector<std::pair<uint64_t, std::function<void()>>> garbage_;
+  std::unique_ptr<MemoryAllocator> memory_;
+};
+
+} // namespace rayster::rhi

@@ -1,0 +1,97 @@
+#pragma once
+// Pipelines: compute, graphics (dynamic rendering), ray tracing (with its shader binding table in
+// rhi/sbt.h). Each pipeline has one push-descriptor set (set 0) and one push-constant range, which
+// keeps passes free of descriptor pools: a pass pushes exactly what it reads and writes.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <volk.h>
+
+#include "rhi/resources.h"
+
+namespace rayster::rhi {
+
+class Context;
+
+struct Binding {
+  uint32_t binding;
+  VkDescriptorType type;
+  uint32_t count = 1;
+};
+
+class Pipeline {
+ public:
+  Pipeline() = default;
+  ~Pipeline() { reset(); }
+  Pipeline(Pipeline&& o) noexcept { *this = std::move(o); }
+  Pipeline& operator=(Pipeline&& o) noexcept;
+  void reset();
+
+  VkPipeline handle() const { return pipeline_; }
+  VkPipelineLayout layout() const { return layout_; }
+  VkPipelineBindPoint bindPoint() const { return bindPoint_; }
+  VkShaderStageFlags stages() const { return stages_; }
+  explicit operator bool() const { return pipeline_ != VK_NULL_HANDLE; }
+
+ protected:
+  friend struct PipelineBuilder;
+  friend Pipeline createComputePipeline(Context&, std::string_view, std::span<const struct Binding>, uint32_t);
+  friend Pipeline createGraphicsPipeline(Context&, const struct GraphicsPipelineDesc&);
+  Context* ctx_ = nullptr;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkPipelineBindPoint bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
+  VkShaderStageFlags stages_ = 0;
+};
+
+// Shader modules come from the SPIR-V embedded at build time (shaders/embedded.h).
+VkShaderModule createShaderModule(Context& ctx, std::string_view name);
+
+Pipeline createComputePipeline(Context& ctx, std::string_view shader, std::span<const Binding> bindings,
+                               uint32_t pushConstantBytes);
+
+struct GraphicsPipelineDesc {
+  std::string_view vertex, fragment;
+  std::vector<VkFormat> colorFormats;
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+  VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
+  std::vector<Binding> bindings;
+  uint32_t pushConstantBytes = 0;
+};
+Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc);
+
+// Records vkCmdPushDescriptorSetKHR for set 0 of a pipeline.
+class DescriptorWriter {
+ public:
+  DescriptorWriter& storageImage(uint32_t binding, VkImageView view);
+  DescriptorWriter& sampledImage(uint32_t binding, VkImageView view, VkSampler sampler,
+                                 VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  DescriptorWriter& uniformBuffer(uint32_t binding, const Buffer& buffer);
+  DescriptorWriter& storageBuffer(uint32_t binding, const Buffer& buffer);
+  DescriptorWriter& accelerationStructure(uint32_t binding, VkAccelerationStructureKHR as);
+  void push(VkCommandBuffer cmd, const Pipeline& pipeline);
+
+ private:
+  struct Entry {
+    VkWriteDescriptorSet write;
+    VkDescriptorImageInfo image;
+    VkDescriptorBufferInfo buffer;
+    VkWriteDescriptorSetAccelerationStructureKHR as;
+    VkAccelerationStructureKHR asHandle;
+  };
+  std::vector<Entry> entries_;
+};
+
+// Shared by the pipeline factories in rhi/.
+struct PipelineBuilder {
+  static void makeLayout(Context& ctx, Pipeline& p, std::span<const Binding> bindings, uint32_t pushBytes);
+  static void setHandle(Pipeline& p, VkPipeline handle, VkPipelineBindPoint bindPoint) {
+    p.pipeline_ = handle;
+    p.bindPoint_ = bindPoint;
+  }
+};
+
+} // namespace rayster::rhi

@@ -1,0 +1,146 @@
+#include "rhi/resources.h"
+
+#include <cstring>
+#include <utility>
+
+#include "rhi/commands.h"
+#include "rhi/context.h"
+#include "rhi/vk_check.h"
+
+namespace rayster::rhi {
+
+Buffer::Buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory, const char* name)
+    : ctx_(&ctx), size_(size) {
+  VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  ci.size = size;
+  ci.usage = usage | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+  VK_CHECK(vkCreateBuffer(ctx.device(), &ci, nullptr, &buffer_));
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(ctx.device(), buffer_, &req);
+  allocation_ = ctx.memory().allocate(req, memory, true);
+  VK_CHECK(vkBindBufferMemory(ctx.device(), buffer_, allocation_.memory, allocation_.offset));
+  VkBufferDeviceAddressInfo ai{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+  ai.buffer = buffer_;
+  address_ = vkGetBufferDeviceAddress(ctx.device(), &ai);
+  ctx.setName(VK_OBJECT_TYPE_BUFFER, uint64_t(buffer_), name);
+}
+
+Buffer& Buffer::operator=(Buffer&& o) noexcept {
+  if (this != &o) {
+    reset();
+    ctx_ = std::exchange(o.ctx_, nullptr);
+    buffer_ = std::exchange(o.buffer_, VK_NULL_HANDLE);
+    allocation_ = std::exchange(o.allocation_, {});
+    size_ = std::exchange(o.size_, 0);
+    address_ = std::exchange(o.address_, 0);
+  }
+  return *this;
+}
+
+void Buffer::reset() {
+  if (!buffer_) return;
+  ctx_->retire([ctx = ctx_, b = buffer_, a = allocation_] {
+    vkDestroyBuffer(ctx->device(), b, nullptr);
+    ctx->memory().free(a);
+  });
+  buffer_ = VK_NULL_HANDLE;
+  allocation_ = {};
+}
+
+bool isDepthFormat(VkFormat f) {
+  return f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D24_UNORM_S8_UINT ||
+         f == VK_FORMAT_D32_SFLOAT_S8_UINT;
+}
+
+VkImageAspectFlags Image::aspect() const {
+  return isDepthFormat(desc_.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+}
+
+Image::Image(Context& ctx, const ImageDesc& desc, const char* name) : ctx_(&ctx), desc_(desc) {
+  VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  ci.imageType = VK_IMAGE_TYPE_2D;
+  ci.format = desc.format;
+  ci.extent = {desc.width, desc.height, 1};
+  ci.mipLevels = 1;
+  ci.arrayLayers = desc.layers;
+  ci.samples = VK_SAMPLE_COUNT_1_BIT;
+  ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ci.usage = desc.usage;
+  ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VK_CHECK(vkCreateImage(ctx.device(), &ci, nullptr, &image_));
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(ctx.device(), image_, &req);
+  allocation_ = ctx.memory().allocate(req, MemoryUsage::GpuOnly, false);
+  VK_CHECK(vkBindImageMemory(ctx.device(), image_, allocation_.memory, allocation_.offset));
+  VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  vi.image = image_;
+  vi.viewType = desc.layers > 1 || desc.array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+  vi.format = desc.format;
+  vi.subresourceRange = {aspect(), 0, 1, 0, desc.layers};
+  VK_CHECK(vkCreateImageView(ctx.device(), &vi, nullptr, &view_));
+  ctx.setName(VK_OBJECT_TYPE_IMAGE, uint64_t(image_), name);
+  ctx.setName(VK_OBJECT_TYPE_IMAGE_VIEW, uint64_t(view_), name);
+}
+
+Image& Image::operator=(Image&& o) noexcept {
+  if (this != &o) {
+    reset();
+    ctx_ = std::exchange(o.ctx_, nullptr);
+    image_ = std::exchange(o.image_, VK_NULL_HANDLE);
+    view_ = std::exchange(o.view_, VK_NULL_HANDLE);
+    allocation_ = std::exchange(o.allocation_, {});
+    desc_ = o.desc_;
+  }
+  return *this;
+}
+
+void Image::reset() {
+  if (!image_) return;
+  ctx_->retire([ctx = ctx_, i = image_, v = view_, a = allocation_] {
+    vkDestroyImageView(ctx->device(), v, nullptr);
+    vkDestroyImage(ctx->device(), i, nullptr);
+    ctx->memory().free(a);
+  });
+  image_ = VK_NULL_HANDLE;
+  view_ = VK_NULL_HANDLE;
+  allocation_ = {};
+}
+
+Sampler::Sampler(Context& ctx, VkFilter filter, VkSamplerAddressMode address) : ctx_(&ctx) {
+  VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  ci.magFilter = ci.minFilter = filter;
+  ci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  ci.addressModeU = ci.addressModeV = ci.addressModeW = address;
+  ci.maxLod = VK_LOD_CLAMP_NONE;
+  VK_CHECK(vkCreateSampler(ctx.device(), &ci, nullptr, &sampler_));
+}
+
+Sampler& Sampler::operator=(Sampler&& o) noexcept {
+  if (this != &o) {
+    reset();
+    ctx_ = std::exchange(o.ctx_, nullptr);
+    sampler_ = std::exchange(o.sampler_, VK_NULL_HANDLE);
+  }
+  return *this;
+}
+
+void Sampler::reset() {
+  if (!sampler_) return;
+  ctx_->retire([ctx = ctx_, s = sampler_] { vkDestroySampler(ctx->device(), s, nullptr); });
+  sampler_ = VK_NULL_HANDLE;
+}
+
+Buffer createBufferWithData(Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage,
+                            const char* name) {
+  VkDeviceSize size = std::max<VkDeviceSize>(bytes.size(), 16);
+  Buffer staging(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging");
+  std::memcpy(staging.mapped(), bytes.data(), bytes.size());
+  Buffer buffer(ctx, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::GpuOnly, name);
+  OneShot cmd(ctx);
+  VkBufferCopy region{0, 0, size};
+  vkCmdCopyBuffer(cmd, staging.handle(), buffer.handle(), 1, &region);
+  cmd.submitAndWait();
+  return buffer;
+}
+
+} // namespace rayster::rhi

@@ -1,0 +1,102 @@
+#include "scene/scene.h"
+
+#include <cmath>
+
+namespace rayster::scene {
+namespace {
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+bool finite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+std::string meshLabel(const Mesh& mesh, size_t index) {
+  return mesh.name.empty() ? fmt::format("mesh {}", index) : fmt::format("mesh {} '{}'", index, mesh.name);
+}
+
+Status validatePrimitive(const Scene& scene, const Mesh& mesh, size_t meshIndex, const Primitive& prim,
+                         size_t primIndex) {
+  const std::string where = fmt::format("{} primitive {}", meshLabel(mesh, meshIndex), primIndex);
+  const size_t vertexCount = prim.positions.size();
+  if (prim.normals.size() != vertexCount)
+    return makeError(ExitCode::BadInput, "{}: {} normals for {} positions", where, prim.normals.size(), vertexCount);
+  if (!prim.uvs.empty() && prim.uvs.size() != vertexCount)
+    return makeError(ExitCode::BadInput, "{}: {} uvs for {} positions", where, prim.uvs.size(), vertexCount);
+  if (prim.indices.size() % 3 != 0)
+    return makeError(ExitCode::BadInput, "{}: index count {} is not a multiple of 3", where, prim.indices.size());
+  for (size_t i = 0; i < prim.indices.size(); ++i)
+    if (prim.indices[i] >= vertexCount)
+      return makeError(ExitCode::BadInput, "{}: index {} is {}, past the vertex count {}", where, i, prim.indices[i],
+                       vertexCount);
+  for (size_t i = 0; i < vertexCount; ++i)
+    if (!finite(prim.positions[i]))
+      return makeError(ExitCode::BadInput, "{}: position {} is not finite", where, i);
+  if (prim.material >= scene.materials.size())
+    return makeError(ExitCode::BadInput, "{}: material {} out of range ({} materials)", where, prim.material,
+                     scene.materials.size());
+  return okStatus();
+}
+
+} // namespace
+
+void Aabb::extend(glm::vec3 p) {
+  min = glm::min(min, p);
+  max = glm::max(max, p);
+}
+
+bool Aabb::valid() const { return min.x <= max.x && min.y <= max.y && min.z <= max.z; }
+
+Aabb Scene::bounds() const {
+  Aabb box;
+  for (const Instance& instance : instances) {
+    if (instance.mesh >= meshes.size()) continue;
+    for (const Primitive& prim : meshes[instance.mesh].primitives)
+      for (const glm::vec3& p : prim.positions) box.extend(glm::vec3(instance.worldFromObject * glm::vec4(p, 1.0f)));
+  }
+  return box;
+}
+
+size_t Scene::triangleCount() const {
+  size_t count = 0;
+  for (const Instance& instance : instances) {
+    if (instance.mesh >= meshes.size()) continue;
+    for (const Primitive& prim : meshes[instance.mesh].primitives) count += prim.indices.size() / 3;
+  }
+  return count;
+}
+
+Status validate(const Scene& scene) {
+  const std::string sceneName = scene.name.empty() ? std::string("scene") : scene.name;
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    for (size_t p = 0; p < scene.meshes[m].primitives.size(); ++p)
+      RAYSTER_TRY(validatePrimitive(scene, scene.meshes[m], m, scene.meshes[m].primitives[p], p));
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& instance = scene.instances[i];
+    if (instance.mesh >= scene.meshes.size())
+      return makeError(ExitCode::BadInput, "{}: instance {} '{}' uses mesh {} ({} meshes)", sceneName, i,
+                       instance.name, instance.mesh, scene.meshes.size());
+    if (!finite(instance.worldFromObject))
+      return makeError(ExitCode::BadInput, "{}: instance {} '{}' has a non-finite transform", sceneName, i,
+                       instance.name);
+  }
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& light = scene.lights[i];
+    if (!finite(light.position) || !finite(light.direction) || !finite(light.color) ||
+        !std::isfinite(light.intensity) || !std::isfinite(light.radius))
+      return makeError(ExitCode::BadInput, "{}: light {} '{}' has a non-finite parameter", sceneName, i, light.name);
+  }
+  if (scene.cameras.empty()) return makeError(ExitCode::BadInput, "{}: no camera", sceneName);
+  for (size_t i = 0; i < scene.cameras.size(); ++i) {
+    const Camera& camera = scene.cameras[i];
+    if (!finite(camera.position) || !finite(camera.target) || !finite(camera.up) ||
+        glm::dot(camera.target - camera.position, camera.target - camera.position) == 0.0f)
+      return makeError(ExitCode::BadInput, "{}: camera {} '{}' has a degenerate view", sceneName, i, camera.name);
+  }
+  return okStatus();
+}
+
+} // namespace rayster::scene

@@ -1,0 +1,72 @@
+// Included by every shader: extensions, shared structs, scene access through device addresses,
+// encodings (octahedral normals, sRGB) and random numbers.
+#ifndef RAYSTER_COMMON_GLSL
+#define RAYSTER_COMMON_GLSL
+
+#extension GL_EXT_scalar_block_layout : require
+#extension GL_EXT_buffer_reference2 : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_nonuniform_qualifier : require
+
+#include "shared/types.h"
+
+const float kPi = 3.14159265358979;
+
+layout(buffer_reference, scalar) readonly buffer Vertices { Vertex v[]; };
+layout(buffer_reference, scalar) readonly buffer Indices { uint i[]; };
+layout(buffer_reference, scalar) readonly buffer Geometries { GeometryRecord g[]; };
+layout(buffer_reference, scalar) readonly buffer Instances { InstanceRecord i[]; };
+layout(buffer_reference, scalar) readonly buffer Materials { MaterialRecord m[]; };
+layout(buffer_reference, scalar) readonly buffer Lights { LightRecord l[]; };
+
+// Octahedral normal encoding (TECHNIQUES.md §1).
+vec2 octEncode(vec3 n) {
+  vec2 p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+  return n.z >= 0.0 ? p : (1.0 - abs(p.yx)) * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(p, vec2(0.0)));
+}
+vec3 octDecode(vec2 e) {
+  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  float t = max(-n.z, 0.0);
+  n.xy += mix(vec2(t), vec2(-t), greaterThanEqual(n.xy, vec2(0.0)));
+  return normalize(n);
+}
+
+// Exact piecewise sRGB. The G-buffer stores albedo sRGB-encoded in UNORM, by both producers.
+vec3 linearToSrgb(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+}
+vec3 srgbToLinear(vec3 c) {
+  return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
+}
+
+// PCG hash (Jarzynski & Olano 2020); seeds go through the hash (TECHNIQUES.md §3).
+uint pcg(uint v) {
+  uint s = v * 747796405u + 2891336453u;
+  uint w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;
+  return (w >> 22u) ^ w;
+}
+uint rngInit(uvec2 px, uint frame, uint seed) { return pcg(px.x + pcg(px.y + pcg(frame ^ pcg(seed)))); }
+float rnd(inout uint state) {
+  state = pcg(state);
+  return float(state >> 8) * (1.0 / 16777216.0);
+}
+
+// Streams, so toggling one effect leaves the others' noise unchanged.
+const uint kShadowStream = 0x51A0u;
+
+// Branchless orthonormal basis (Duff et al. 2017).
+void orthonormalBasis(vec3 n, out vec3 t, out vec3 b) {
+  float s = n.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (s + n.z);
+  float c = n.x * n.y * a;
+  t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+  b = vec3(c, s + n.y * n.y * a, -n.y);
+}
+
+vec3 worldFromDepth(mat4 worldFromClip, vec2 uv, float depth) {
+  vec4 p = worldFromClip * vec4(uv * 2.0 - 1.0, depth, 1.0);
+  return p.xyz / p.w;
+}
+
+#endif

@@ -1,0 +1,48 @@
+#version 460
+#extension GL_EXT_ray_tracing : require
+#include "lib/common.glsl"
+#include "lib/frame.glsl"
+#include "lib/lights.glsl"
+
+// RT shadows from the G-buffer (TECHNIQUES.md §8): one ray per pixel per light per frame, towards
+// a uniform sample of the light's solid angle. gl_LaunchIDEXT.z is the light's layer.
+// Output: 1 visible, 0 occluded; pixels facing away from the light (N·L <= 0) and background
+// pixels write 0, which lighting multiplies with a zero N·L anyway.
+layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
+layout(set = 0, binding = 2) uniform sampler2D depthTex;
+layout(set = 0, binding = 3) uniform sampler2D normalTex;
+layout(set = 0, binding = 4, r16f) uniform writeonly image2DArray outVisibility;
+
+layout(location = 0) rayPayloadEXT uint visible;
+
+void main() {
+  ivec2 px = ivec2(gl_LaunchIDEXT.xy);
+  uint layer = gl_LaunchIDEXT.z;
+  float depth = texelFetch(depthTex, px, 0).r;
+  if (depth >= 1.0) {
+    imageStore(outVisibility, ivec3(px, layer), vec4(0.0));
+    return;
+  }
+  vec2 uv = (vec2(px) + 0.5) / vec2(gl_LaunchSizeEXT.xy);
+  vec3 p = worldFromDepth(frame.worldFromClip, uv, depth);
+  vec4 n = texelFetch(normalTex, px, 0);
+  vec3 ng = octDecode(n.zw);
+  LightRecord light = Lights(frame.lights).l[layer];
+
+  uint rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kShadowStream ^ pcg(layer));
+  vec2 u = vec2(rnd(rng), rnd(rng));
+  float dist;
+  vec3 dir = sampleLightDirection(light, p, u, dist);
+  if (dot(dir, ng) <= 0.0) {
+    imageStore(outVisibility, ivec3(px, layer), vec4(0.0));
+    return;
+  }
+  // Offset along the geometric normal, scaled with the position's magnitude (float spacing).
+  float eps = max(max(abs(p.x), max(abs(p.y), abs(p.z))), 1.0) * 1e-4;
+  vec3 origin = p + ng * eps;
+  visible = 0u;
+  traceRayEXT(tlas,
+              gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT,
+              kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, max(dist - eps, 0.0), 0);
+  imageStore(outVisibility, ivec3(px, layer), vec4(float(visible)));
+}

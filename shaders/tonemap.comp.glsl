@@ -1,0 +1,32 @@
+#version 460
+#include "lib/common.glsl"
+
+// HDR → exposure → ACES fitted (Hill's RRT+ODT fit) → exact sRGB → ±0.5 LSB dither → RGBA8 UNORM.
+// The sRGB encoding happens here, once, and the target is UNORM (never an sRGB format too).
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 1) uniform sampler2D hdrTex;
+layout(set = 0, binding = 2, rgba8) uniform writeonly image2D outLdr;
+layout(push_constant) uniform Push { uvec2 size; float exposure; uint seed; } pc;
+
+// Rows of the fit's matrices; mat3(rows) * v in HLSL equals v * mat3(rows) in GLSL.
+const mat3 kAcesIn = mat3(vec3(0.59719, 0.35458, 0.04823), vec3(0.07600, 0.90834, 0.01566),
+                          vec3(0.02840, 0.13383, 0.83777));
+const mat3 kAcesOut = mat3(vec3(1.60475, -0.53108, -0.07367), vec3(-0.10208, 1.10813, -0.00605),
+                           vec3(-0.00327, -0.07276, 1.07602));
+
+vec3 acesFitted(vec3 c) {
+  c = c * kAcesIn;
+  c = (c * (c + 0.0245786) - 0.000090537) / (c * (0.983729 * c + 0.4329510) + 0.238081);
+  return clamp(c * kAcesOut, 0.0, 1.0);
+}
+
+void main() {
+  uvec2 id = gl_GlobalInvocationID.xy;
+  if (any(greaterThanEqual(id, pc.size))) return;
+  vec3 hdr = texelFetch(hdrTex, ivec2(id), 0).rgb;
+  hdr = max(hdr, vec3(0.0));
+  vec3 ldr = linearToSrgb(acesFitted(hdr * pc.exposure));
+  uint h = pcg(id.x + pcg(id.y + pcg(pc.seed)));
+  float dither = (float(h >> 8) * (1.0 / 16777216.0) - 0.5) / 255.0;
+  imageStore(outLdr, ivec2(id), vec4(clamp(ldr + dither, 0.0, 1.0), 1.0));
+}
