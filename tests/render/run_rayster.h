@@ -1,0 +1,58 @@
+#pragma once
+// Runs the real `rayster` binary as a user would, with validation on, and reads what it wrote.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/image.h"
+#include "core/image_io.h"
+#include "core/metrics.h"
+
+namespace rayster::test {
+
+struct RunResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr
+};
+
+inline RunResult runRayster(const std::string& args, const std::string& env = "") {
+  std::string cmd = "env XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} RAYSTER_VALIDATION=1 " + env + " " +
+                    std::string(RAYSTER_BINARY) + " " + args + " 2>&1";
+  RunResult r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  while (size_t n = fread(buf.data(), 1, buf.size(), pipe)) r.output.append(buf.data(), n);
+  int status = pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+// A fresh folder per test under the system temp directory.
+inline std::filesystem::path testDir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  auto dir = std::filesystem::temp_directory_path() / "rayster-tests" / (std::string(info->test_suite_name()) + "." + info->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// Renders with `args` into dir/name.png, asserts success and a non-empty image of the given size.
+inline Image8 renderOk(const std::filesystem::path& dir, const std::string& name, const std::string& args, int w, int h) {
+  auto out = dir / (name + ".png");
+  RunResult r = runRayster("render " + args + " --size " + std::to_string(w) + "x" + std::to_string(h) + " -o " + out.string());
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  auto img = readPng(out);
+  EXPECT_TRUE(img.ok()) << (img.ok() ? "" : img.error().message);
+  if (!img.ok()) return {};
+  auto empty = rejectEmpty(*img, w, h);
+  EXPECT_FALSE(empty.has_value()) << name << ": " << empty.value_or("");
+  return std::move(img).value();
+}
+
+} // namespace rayster::test

@@ -1,0 +1,178 @@
+// End-to-end renders on lavapipe through the real binary, validation on: goldens, determinism,
+// the two G-buffer producers, and the error paths a user meets.
+#include <cstdlib>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "tests/render/run_rayster.h"
+
+namespace rayster::test {
+namespace {
+
+constexpr int kW = 160, kH = 120;
+// DESIGN.md §6: at most 2/255 per channel on at least 99.9 % of the pixels.
+constexpr int kGoldenTolerance = 2;
+constexpr double kGoldenFraction = 0.999;
+
+std::filesystem::path goldenPath(const std::string& name) {
+  return std::filesystem::path(RAYSTER_SOURCE_DIR) / "tests" / "golden" / (name + ".png");
+}
+
+// Compares with the committed golden; RAYSTER_BLESS=1 rewrites the golden instead (scripts/bless-goldens.sh).
+void expectMatchesGolden(const Image8& actual, const std::string& name, const std::filesystem::path& dir) {
+  auto golden = goldenPath(name);
+  if (const char* bless = std::getenv("RAYSTER_BLESS"); bless && std::string(bless) == "1") {
+    ASSERT_TRUE(writePng(golden, actual).ok());
+    GTEST_SKIP() << "blessed " << golden;
+  }
+  auto expected = readPng(golden);
+  ASSERT_TRUE(expected.ok()) << "missing golden " << golden << " (run scripts/bless-goldens.sh)";
+  ASSERT_EQ(expected->width, actual.width);
+  ASSERT_EQ(expected->height, actual.height);
+  ImageDiff diff = compare(*expected, actual, kGoldenTolerance);
+  if (diff.fractionWithinTolerance < kGoldenFraction) {
+    (void)writePng(dir / (name + ".actual.png"), actual);
+    (void)writePng(dir / (name + ".diff.png"), diff.heatmap);
+  }
+  EXPECT_GE(diff.fractionWithinTolerance, kGoldenFraction)
+      << name << ": max channel diff " << diff.maxChannelDiff << ", PSNR " << diff.psnr << " dB; actual and diff in "
+      << dir;
+}
+
+TEST(Render, CornellMatchesGolden) {
+  auto dir = testDir();
+  Image8 img = renderOk(dir, "cornell", "builtin:cornell --primary raster --frames 16 --seed 1", kW, kH);
+  expectMatchesGolden(img, "cornell-160x120", dir);
+}
+
+TEST(Render, CornellLooksLikeACornellBox) {
+  // Independent of the golden: the red wall is on the left, the green on the right, the light is
+  // the brightest thing near the top, and the floor under the light is lit.
+  auto dir = testDir();
+  Image8 img = renderOk(dir, "cornell", "--primary raster --frames 8", kW, kH);
+  const uint8_t* left = img.pixel(kW * 2 / 10, kH / 2);
+  const uint8_t* right = img.pixel(kW * 8 / 10, kH / 2);
+  EXPECT_GT(left[0], 2 * left[1] + 20) << "left wall should be red";
+  EXPECT_GT(2 * right[1], 3 * right[0]) << "right wall should be green";
+  EXPECT_GT(right[1], right[2]) << "right wall should be green";
+  const uint8_t* light = img.pixel(kW / 2, kH * 2 / 10);
+  EXPECT_GT(light[0] + light[1] + light[2], 3 * 230) << "the sphere light should be near white";
+}
+
+TEST(Render, SameSeedSameImageOtherSeedOtherImage) {
+  auto dir = testDir();
+  const std::string args = "--primary raster --frames 2";
+  Image8 a = renderOk(dir, "a", args + " --seed 7", kW, kH);
+  Image8 b = renderOk(dir, "b", args + " --seed 7", kW, kH);
+  Image8 c = renderOk(dir, "c", args + " --seed 8", kW, kH);
+  EXPECT_EQ(a.rgba, b.rgba) << "the same seed must give the identical image";
+  EXPECT_NE(a.rgba, c.rgba) << "another seed must change the soft-shadow noise";
+}
+
+TEST(Render, RasterAndTracedGBufferAgree) {
+  auto dir = testDir();
+  Image8 raster = renderOk(dir, "raster", "--primary raster --frames 4 --seed 3", kW, kH);
+  Image8 traced = renderOk(dir, "traced", "--primary rt --frames 4 --seed 3", kW, kH);
+  ImageDiff diff = compare(raster, traced, 2);
+  if (diff.fractionWithinTolerance < 0.995) (void)writePng(dir / "diff.png", diff.heatmap);
+  // Both sample pixel centres with one projection; only silhouette pixels may differ.
+  EXPECT_GE(diff.fractionWithinTolerance, 0.995) << "max diff " << diff.maxChannelDiff;
+}
+
+TEST(Render, AutoPrimaryReportsItsChoice) {
+  auto dir = testDir();
+  RunResult r = runRayster("render --size 64x48 --frames 1 --primary auto -o " + (dir / "a.png").string());
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("primary: auto chose"), std::string::npos) << r.output;
+}
+
+TEST(Render, ShadowsConvergeWithFrames) {
+  // More frames average more shadow samples: the image gets closer to a high-sample render.
+  auto dir = testDir();
+  auto render = [&](int frames, int seed) {
+    return renderOk(dir, "f" + std::to_string(frames) + "s" + std::to_string(seed),
+                    "--primary raster --frames " + std::to_string(frames) + " --seed " + std::to_string(seed), kW, kH);
+  };
+  Image8 ref = render(256, 100);
+  double err1 = compare(ref, render(1, 1), 0).rmse;
+  double err16 = compare(ref, render(16, 1), 0).rmse;
+  EXPECT_LT(err16, err1 * 0.5) << "1 frame rmse " << err1 << ", 16 frames " << err16;
+}
+
+TEST(Render, TimingsAndJson) {
+  auto dir = testDir();
+  auto json = dir / "t.json";
+  RunResult r = runRayster("render --size 64x48 --frames 2 --primary raster --timings --json " + json.string() +
+                           " -o " + (dir / "a.png").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* pass : {"gbuffer-raster", "rt-shadows", "lighting", "tonemap", "frame (GPU)"})
+    EXPECT_NE(r.output.find(pass), std::string::npos) << pass << " missing in:\n" << r.output;
+  ASSERT_TRUE(std::filesystem::exists(json));
+}
+
+TEST(Render, ExrOutputIsLinearHdr) {
+  auto dir = testDir();
+  auto exr = dir / "a.exr";
+  RunResult r = runRayster("render --size 64x48 --frames 2 -o " + exr.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  auto img = readExr(exr);
+  ASSERT_TRUE(img.ok());
+  EXPECT_FALSE(rejectEmpty(*img, 64, 48).has_value());
+  float maxValue = 0;
+  for (float v : img->rgba) maxValue = std::max(maxValue, v);
+  EXPECT_GT(maxValue, 1.0f) << "the light's radiance is far above display white";
+}
+
+// ---- error paths: one-line cause, documented exit code, no output file ----
+
+void expectFailure(const RunResult& r, int code, const std::string& needle, const std::filesystem::path& out) {
+  EXPECT_EQ(r.exitCode, code) << r.output;
+  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out)) << "a failed run must not leave " << out;
+}
+
+TEST(RenderErrors, NoVulkanDriver) {
+  auto dir = testDir();
+  auto out = dir / "a.png";
+  RunResult r = runRayster("render -o " + out.string(),
+                           "VK_DRIVER_FILES=/nonexistent/icd.json VK_ICD_FILENAMES=/nonexistent/icd.json");
+  expectFailure(r, 4, "rayster: error:", out);
+}
+
+TEST(RenderErrors, BadArguments) {
+  auto dir = testDir();
+  auto out = dir / "a.png";
+  expectFailure(runRayster("render --size 0x10 -o " + out.string()), 2, "--size", out);
+  expectFailure(runRayster("render --size banana -o " + out.string()), 2, "--size", out);
+  expectFailure(runRayster("render --frames 0 -o " + out.string()), 2, "frames", out);
+  expectFailure(runRayster("render --primary maybe -o " + out.string()), 2, "primary", out);
+  expectFailure(runRayster("render -o " + (dir / "a.jpg").string()), 2, ".png", dir / "a.jpg");
+  expectFailure(runRayster("render --camera nope -o " + out.string()), 2, "nope", out);
+}
+
+TEST(RenderErrors, UnknownSceneOrMissingFile) {
+  auto dir = testDir();
+  auto out = dir / "a.png";
+  expectFailure(runRayster("render builtin:nope -o " + out.string()), 3, "nope", out);
+  expectFailure(runRayster("render /nonexistent/scene.gltf -o " + out.string()), 3, "scene.gltf", out);
+}
+
+TEST(RenderErrors, UnwritableOutput) {
+  auto dir = testDir();
+  auto blocker = dir / "file";
+  { FILE* f = std::fopen(blocker.c_str(), "w"); std::fclose(f); }
+  // A path under a regular file can never be created, even by root.
+  RunResult r = runRayster("render --size 32x24 --frames 1 -o " + (blocker / "a.png").string());
+  EXPECT_EQ(r.exitCode, 8) << r.output;
+  EXPECT_NE(r.output.find("cannot write"), std::string::npos) << r.output;
+}
+
+TEST(Info, ListsLavapipeWithRayTracing) {
+  RunResult r = runRayster("info");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("ray-tracing pipeline: yes"), std::string::npos) << r.output;
+}
+
+} // namespace
+} // namespace rayster::test
