@@ -2,6 +2,7 @@
 // exit code with a one-line cause.
 #include <cstdio>
 #include <cstdlib>
+#include <cstdlib>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -60,6 +61,16 @@ int run(int argc, char** argv) {
   render->add_option("--json", ro.jsonOutput, "Write per-pass GPU times and settings as JSON to this file");
 
   CLI::App* info = cli.add_subcommand("info", "List Vulkan devices and their ray-tracing capabilities");
+
+  CompareOptions co;
+  CLI::App* compareCmd = cli.add_subcommand("compare", "Compare two images (PNG or EXR): PSNR, RMSE, per-pixel tolerance");
+  compareCmd->add_option("reference", co.reference, "Reference image")->required();
+  compareCmd->add_option("test", co.test, "Image to compare with the reference")->required();
+  compareCmd->add_option("--tolerance", co.tolerance, "Per-channel tolerance in 1/255 steps (default 2)");
+  compareCmd->add_option("--min-fraction", co.minFraction,
+                         "Exit 9 unless at least this fraction of pixels is within tolerance (e.g. 0.999)");
+  compareCmd->add_option("--heatmap", co.heatmap, "Write a per-pixel difference heatmap (.png)");
+  compareCmd->fallthrough();
   render->fallthrough();  // global options (-v, --validation, --device) also after the subcommand
   info->fallthrough();
 
@@ -74,8 +85,11 @@ int run(int argc, char** argv) {
     return int(ExitCode::BadArguments);
   }
   if (verbose) log::setLevel(log::Level::Debug);
+  // Headless runs need no display, but Mesa and the loader expect a runtime directory.
+  setenv("XDG_RUNTIME_DIR", "/tmp", /*overwrite=*/0);
 
   if (info->parsed()) return infoCommand();
+  if (compareCmd->parsed()) return compareCommand(co);
   if (render->parsed()) {
     if (!parseSize(size, ro.settings.width, ro.settings.height)) {
       std::fprintf(stderr, "rayster: error: --size must be WxH with 1..16384 each, got '%s'\n", size.c_str());

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Builds a Release rayster and packs it with the shared libraries and the Vulkan loader it needs
+# into dist/rayster-gpu/, for a GPU machine that has a driver but no package manager (docs/gpu.md).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cmake -S . -B build-release -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYSTER_BUILD_TESTS=OFF >/dev/null
+ninja -C build-release rayster
+out=dist/rayster-gpu
+rm -rf "$out"
+mkdir -p "$out/lib"
+cp build-release/rayster "$out/"
+# Libraries from Debian that a GPU image may lack; libc and libstdc++ come from the target (newer).
+for lib in libfmt.so.9 libtinyexr.so.1d libvulkan.so.1; do
+  path=$(ldconfig -p | awk -v l="$lib" '$1 == l && /x86-64/ {print $NF; exit}')
+  [ -n "$path" ] || { echo "bundle-gpu: $lib not found (run scripts/setup.sh)" >&2; exit 1; }
+  cp -L "$path" "$out/lib/$lib"
+done
+cat >"$out/run.sh" <<'RUN'
+#!/bin/sh
+# Runs the bundled rayster with its own libraries and the machine's NVIDIA Vulkan driver.
+here=$(cd "$(dirname "$0")" && pwd)
+export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+if [ -z "${VK_DRIVER_FILES:-}${VK_ICD_FILENAMES:-}" ]; then
+  for f in /usr/share/vulkan/icd.d/nvidia_icd.json /etc/vulkan/icd.d/nvidia_icd.json \
+           /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json; do
+    if [ -f "$f" ]; then export VK_DRIVER_FILES="$f" VK_ICD_FILENAMES="$f"; break; fi
+  done
+fi
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
+exec "$here/rayster" "$@"
+RUN
+chmod +x "$out/run.sh"
+du -sh "$out"
+echo "bundle-gpu: $out ready; run it as $out/run.sh render ..."
