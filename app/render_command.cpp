@@ -44,6 +44,7 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   nlohmann::json j;
   j["device"] = ctx.info().name;
   j["driver"] = ctx.info().driverInfo;
+  j["commit"] = RAYSTER_COMMIT;
   j["scene"] = o.scene;
   j["width"] = o.settings.width;
   j["height"] = o.settings.height;

@@ -44,19 +44,19 @@ const rhi::Image& PassContext::image(ImageHandle h) const { return *graph_.image
 const rhi::Buffer& PassContext::buffer(BufferHandle h) const { return *graph_.buffers_[h.id].buffer; }
 
 ImageHandle RenderGraph::createImage(std::string name, const rhi::ImageDesc& desc) {
-  images_.push_back({std::move(name), desc, nullptr, nullptr, {}});
+  images_.push_back({std::move(name), desc, nullptr, nullptr});
   return {uint32_t(images_.size() - 1)};
 }
 
 ImageHandle RenderGraph::importImage(std::string name, const rhi::Image* image, ResourceState* state) {
   RAYSTER_ASSERT(image && state, "imported image needs an image and its state");
-  images_.push_back({std::move(name), image->desc(), image, state, {}});
+  images_.push_back({std::move(name), image->desc(), image, state});
   return {uint32_t(images_.size() - 1)};
 }
 
 BufferHandle RenderGraph::importBuffer(std::string name, const rhi::Buffer* buffer, ResourceState* state) {
   RAYSTER_ASSERT(buffer && state, "imported buffer needs a buffer and its state");
-  buffers_.push_back({std::move(name), buffer, state, {}});
+  buffers_.push_back({std::move(name), buffer, state});
   return {uint32_t(buffers_.size() - 1)};
 }
 
@@ -66,12 +66,14 @@ void RenderGraph::addPass(std::string name, const std::function<void(PassBuilder
   setup(builder);
 }
 
-ResourceState& RenderGraph::state(bool isImage, uint32_t id) {
-  if (isImage) return images_[id].external ? *images_[id].external : images_[id].local;
-  return buffers_[id].external ? *buffers_[id].external : buffers_[id].local;
+
+std::vector<PlannedPass> RenderGraph::compile() const {
+  std::vector<ResourceState> imageStates, bufferStates;
+  return plan(imageStates, bufferStates);
 }
 
-std::vector<PlannedPass> RenderGraph::compile() {
+std::vector<PlannedPass> RenderGraph::plan(std::vector<ResourceState>& imageStates,
+                                           std::vector<ResourceState>& bufferStates) const {
   // Culling, back to front: a pass lives if it has a side effect, writes an imported resource (its
   // contents outlive the frame), or writes something a live later pass reads.
   std::vector<bool> live(passes_.size(), false);
@@ -91,13 +93,20 @@ std::vector<PlannedPass> RenderGraph::compile() {
       if (accessInfo(a.use, a.isImage).reads) (a.isImage ? imageNeeded : bufferNeeded)[a.resource] = true;
   }
 
+  // Barriers are derived on copies of the states, so planning never changes the graph: execute()
+  // writes the final states back to imported resources once the passes are recorded.
+  imageStates.clear();
+  bufferStates.clear();
+  for (const ImageEntry& e : images_) imageStates.push_back(e.external ? *e.external : ResourceState{});
+  for (const BufferEntry& e : buffers_) bufferStates.push_back(e.external ? *e.external : ResourceState{});
   std::vector<PlannedPass> plan;
   for (uint32_t i = 0; i < passes_.size(); ++i) {
     if (!live[i]) continue;
     PlannedPass pp{i, {}};
-    for (const Access& a : passes_[i].accesses)
-      if (auto b = transition(state(a.isImage, a.resource), a.use, a.isImage))
-        pp.barriers.push_back({a.isImage, a.resource, *b});
+    for (const Access& a : passes_[i].accesses) {
+      ResourceState& st = a.isImage ? imageStates[a.resource] : bufferStates[a.resource];
+      if (auto b = transition(st, a.use, a.isImage)) pp.barriers.push_back({a.isImage, a.resource, *b});
+    }
     plan.push_back(std::move(pp));
   }
   return plan;
@@ -107,8 +116,9 @@ void RenderGraph::execute(VkCommandBuffer cmd, rhi::TimestampPool* timers) {
   RAYSTER_ASSERT(ctx_ && pool_, "execute() needs a Vulkan context and a transient pool");
   for (ImageEntry& e : images_)
     if (!e.image) e.image = &pool_->acquire(*ctx_, e.name, e.desc);
-  const std::vector<PlannedPass> plan = compile();
-  for (const PlannedPass& pp : plan) {
+  std::vector<ResourceState> imageStates, bufferStates;
+  const std::vector<PlannedPass> passes = plan(imageStates, bufferStates);
+  for (const PlannedPass& pp : passes) {
     Pass& pass = passes_[pp.pass];
     std::vector<VkImageMemoryBarrier2> imageBarriers;
     std::vector<VkMemoryBarrier2> memoryBarriers;
@@ -152,6 +162,10 @@ void RenderGraph::execute(VkCommandBuffer cmd, rhi::TimestampPool* timers) {
     if (timers) timers->end(cmd, timer);
     ctx_->endLabel(cmd);
   }
+  for (size_t i = 0; i < images_.size(); ++i)
+    if (images_[i].external) *images_[i].external = imageStates[i];
+  for (size_t i = 0; i < buffers_.size(); ++i)
+    if (buffers_[i].external) *buffers_[i].external = bufferStates[i];
 }
 
 } // namespace rayster::graph

@@ -95,8 +95,9 @@ class RenderGraph {
   using Execute = std::function<void(PassContext&)>;
   void addPass(std::string name, const std::function<void(PassBuilder&)>& setup, Execute execute);
 
-  // Orders, culls and derives barriers; pure (no Vulkan calls), so it is unit-testable.
-  std::vector<PlannedPass> compile();
+  // Orders, culls and derives barriers; pure (no Vulkan calls, no state changes), so it is
+  // unit-testable and may be called any number of times.
+  std::vector<PlannedPass> compile() const;
   // Records every live pass into cmd, with its barriers, label and timestamps.
   void execute(VkCommandBuffer cmd, rhi::TimestampPool* timers);
 
@@ -123,15 +124,14 @@ class RenderGraph {
     rhi::ImageDesc desc;
     const rhi::Image* image = nullptr;
     ResourceState* external = nullptr;
-    ResourceState local;
   };
   struct BufferEntry {
     std::string name;
     const rhi::Buffer* buffer = nullptr;
     ResourceState* external = nullptr;
-    ResourceState local;
   };
-  ResourceState& state(bool isImage, uint32_t id);
+  // Plans on copies of the resource states and returns the states after the frame.
+  std::vector<PlannedPass> plan(std::vector<ResourceState>& imageStates, std::vector<ResourceState>& bufferStates) const;
 
   rhi::Context* ctx_;
   TransientPool* pool_;

@@ -45,6 +45,8 @@ void Buffer::reset() {
   });
   buffer_ = VK_NULL_HANDLE;
   allocation_ = {};
+  size_ = 0;
+  address_ = 0;
 }
 
 bool isDepthFormat(VkFormat f) {

@@ -10,7 +10,8 @@ rm -rf "$out"
 mkdir -p "$out/lib"
 cp build-release/rayster "$out/"
 # Libraries from Debian that a GPU image may lack; libc and libstdc++ come from the target (newer).
-for lib in libfmt.so.9 libtinyexr.so.1d libvulkan.so.1; do
+# NVIDIA's Vulkan driver lives in libGLX_nvidia, which needs glvnd's dispatch libraries to load.
+for lib in libfmt.so.9 libtinyexr.so.1d libvulkan.so.1 libGLdispatch.so.0 libGLX.so.0 libEGL.so.1 libOpenGL.so.0 libGL.so.1; do
   path=$(ldconfig -p | awk -v l="$lib" '$1 == l && /x86-64/ {print $NF; exit}')
   [ -n "$path" ] || { echo "bundle-gpu: $lib not found (run scripts/setup.sh)" >&2; exit 1; }
   cp -L "$path" "$out/lib/$lib"
@@ -21,8 +22,8 @@ cat >"$out/run.sh" <<'RUN'
 here=$(cd "$(dirname "$0")" && pwd)
 export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 if [ -z "${VK_DRIVER_FILES:-}${VK_ICD_FILENAMES:-}" ]; then
-  for f in /usr/share/vulkan/icd.d/nvidia_icd.json /etc/vulkan/icd.d/nvidia_icd.json \
-           /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json; do
+  for f in /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/icd.d/nvidia_icd.json \
+           /etc/vulkan/icd.d/nvidia_icd.json; do
     if [ -f "$f" ]; then export VK_DRIVER_FILES="$f" VK_ICD_FILENAMES="$f"; break; fi
   done
 fi

@@ -21,6 +21,7 @@ PACKAGES=(
   libvulkan-dev vulkan-validationlayers vulkan-tools libvulkan-volk-dev
   libglm-dev libfmt-dev libcli11-dev nlohmann-json3-dev libstb-dev
   libtinyexr-dev libgtest-dev libgmock-dev
+  libglvnd0 libgl1 libegl1 libopengl0  # bundled for GPU machines by scripts/bundle-gpu.sh
 )
 
 missing=()

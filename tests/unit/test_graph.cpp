@@ -38,12 +38,6 @@ std::vector<std::string> passNames(const RenderGraph& graph, const std::vector<P
   return names;
 }
 
-const PlannedPass* find(const RenderGraph& graph, const std::vector<PlannedPass>& plan, const std::string& name) {
-  for (const PlannedPass& p : plan)
-    if (graph.passName(p.pass) == name) return &p;
-  return nullptr;
-}
-
 TEST(RenderGraph, CullsUnreadPassAndTheChainFeedingIt) {
   RenderGraph graph(nullptr, nullptr);
   ImageHandle a = graph.createImage("a", storageDesc());
@@ -272,6 +266,28 @@ TEST(RenderGraph, CulledPassLeavesNoTraceInBarriers) {
   EXPECT_EQ(plan[1].barriers[0].barrier.newLayout, VK_IMAGE_LAYOUT_GENERAL);
   EXPECT_EQ(plan[1].barriers[0].barrier.srcStages, kCs);
   EXPECT_EQ(plan[1].barriers[0].barrier.srcAccess, kSw);
+}
+
+TEST(RenderGraph, CompileIsPureAndRepeatable) {
+  // Planning twice must give the same barriers: compile() may not advance any resource state.
+  RenderGraph graph(nullptr, nullptr);
+  ImageHandle img = graph.createImage("img", storageDesc());
+  addPass(graph, "write", [&](PassBuilder& p) { p.write(img, Use::StorageWriteCompute); });
+  addPass(graph, "read", [&](PassBuilder& p) {
+    p.read(img, Use::SampledRayTracing);
+    p.sideEffect();
+  });
+  auto first = graph.compile();
+  auto second = graph.compile();
+  ASSERT_EQ(first.size(), second.size());
+  for (size_t i = 0; i < first.size(); ++i) {
+    ASSERT_EQ(first[i].barriers.size(), second[i].barriers.size());
+    for (size_t b = 0; b < first[i].barriers.size(); ++b) {
+      EXPECT_EQ(first[i].barriers[b].barrier.oldLayout, second[i].barriers[b].barrier.oldLayout);
+      EXPECT_EQ(first[i].barriers[b].barrier.srcStages, second[i].barriers[b].barrier.srcStages);
+    }
+  }
+  EXPECT_EQ(first[0].barriers[0].barrier.oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
 }
 
 } // namespace

@@ -49,8 +49,12 @@ void checkLayout(const Props& p, uint32_t missCount, uint32_t hitCount) {
   // Regions hold their records and do not overlap.
   EXPECT_GE(l.missSize, missCount * l.stride);
   EXPECT_GE(l.hitSize, hitCount * l.stride);
-  if (missCount == 0) EXPECT_EQ(l.missSize, 0u) << "an empty miss region must be omitted";
-  if (hitCount == 0) EXPECT_EQ(l.hitSize, 0u) << "an empty hit region must be omitted";
+  if (missCount == 0) {
+    EXPECT_EQ(l.missSize, 0u) << "an empty miss region must be omitted";
+  }
+  if (hitCount == 0) {
+    EXPECT_EQ(l.hitSize, 0u) << "an empty hit region must be omitted";
+  }
   EXPECT_GE(l.missOffset, l.raygenOffset + l.raygenSize);
   EXPECT_GE(l.hitOffset, l.missOffset + l.missSize);
   EXPECT_GE(l.totalSize, l.hitOffset + l.hitSize);
@@ -60,8 +64,12 @@ void checkLayout(const Props& p, uint32_t missCount, uint32_t hitCount) {
   EXPECT_LT(l.totalSize, l.stride * (1 + missCount + hitCount) + 3 * p.baseAlignment);
 
   // The last record written (RayTracingPipeline puts records at offset + i * stride) stays inside.
-  if (missCount) EXPECT_LE(l.missOffset + (missCount - 1) * l.stride + l.handleSize, l.hitOffset);
-  if (hitCount) EXPECT_LE(l.hitOffset + (hitCount - 1) * l.stride + l.handleSize, l.totalSize);
+  if (missCount) {
+    EXPECT_LE(l.missOffset + (missCount - 1) * l.stride + l.handleSize, l.hitOffset);
+  }
+  if (hitCount) {
+    EXPECT_LE(l.hitOffset + (hitCount - 1) * l.stride + l.handleSize, l.totalSize);
+  }
 }
 
 TEST_P(SbtLayoutTest, RegionsAreAlignedSizedAndDisjoint) {

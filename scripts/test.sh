@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Sets up a fresh Debian 12 machine (packages, lavapipe with ray tracing), builds Rayster with its
+# tests, and runs them all on lavapipe with Vulkan validation on (any validation error fails).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+./scripts/setup.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
+cmake --build build
+export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
+cd build && ctest --output-on-failure -j2
