@@ -1,6 +1,8 @@
 // `rayster render` and `rayster info`.
 #include "app/render_command.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -80,7 +82,14 @@ int renderCommand(const RenderOptions& o) {
     auto renderer = render::Renderer::create(**ctx, *scene);
     if (!renderer) return fail(renderer.error());
     auto t0 = std::chrono::steady_clock::now();
-    auto out = (*renderer)->render(o.settings);
+    render::RenderSettings settings = o.settings;
+    // Long renders show progress on a terminal; logs and pipes stay clean.
+    if (isatty(STDERR_FILENO) && settings.frames > 1)
+      settings.progress = [](uint32_t done, uint32_t total) {
+        std::fprintf(stderr, "\rrayster: frame %u/%u", done, total);
+        if (done == total) std::fprintf(stderr, "\r\033[K");
+      };
+    auto out = (*renderer)->render(settings);
     if (!out) return fail(out.error());
     double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 

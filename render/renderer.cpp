@@ -165,6 +165,7 @@ struct Renderer::Impl {
         passTimes[t.name].push_back(t.ms);
       }
       ctx.collectGarbage();
+      if (s.progress) s.progress(f + 1, s.frames);
     }
 
     out.ldr = Image8::make(int(s.width), int(s.height));

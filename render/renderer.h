@@ -2,6 +2,7 @@
 // Renders a scene headless with the hybrid frame: G-buffer (raster or traced primary rays),
 // ray-traced shadows accumulated over frames, deferred lighting, tonemapping, readback.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,6 +27,8 @@ struct RenderSettings {
   Primary primary = Primary::Auto;
   float exposureEv = 0.0f;
   std::string camera;  // name; empty: the scene's first camera
+  // Called after each frame with (frames done, frames in all), e.g. to show progress.
+  std::function<void(uint32_t, uint32_t)> progress;
 };
 
 struct PassStats {
