@@ -42,6 +42,8 @@ int run(int argc, char** argv) {
   cli.add_flag("-v,--verbose", verbose, "Print debug details (device, scene statistics)");
   cli.add_flag("--validation", validation, "Enable Vulkan validation (also RAYSTER_VALIDATION=1); any error fails the run");
   cli.add_option("--device", device, "Use the device whose name contains this text");
+  bool noLabels = false;
+  cli.add_flag("--no-debug-labels", noLabels, "Do not emit debug labels and object names (on by default)");
 
   RenderOptions ro;
   std::string size = "1280x720", primary = "auto";
@@ -100,6 +102,7 @@ int run(int argc, char** argv) {
                                               : render::Primary::Auto;
     ro.validation = validation;
     ro.device = device;
+    ro.debugLabels = !noLabels;
     return renderCommand(ro);
   }
   return int(ExitCode::BadArguments);

@@ -73,7 +73,7 @@ int renderCommand(const RenderOptions& o) {
 
   auto scene = loadScene(o.scene);
   if (!scene) return fail(scene.error());
-  auto ctx = rhi::Context::create({o.validation, true, o.device});
+  auto ctx = rhi::Context::create({o.validation, true, o.device, o.debugLabels});
   if (!ctx) return fail(ctx.error());
   log::debug("device: {} ({}), driver {}", (*ctx)->info().name, (*ctx)->info().typeName(), (*ctx)->info().driverInfo);
 

@@ -12,6 +12,7 @@ struct RenderOptions {
   std::string jsonOutput;
   bool printTimings = false;
   bool validation = false;
+  bool debugLabels = true;
   std::string device;
   render::RenderSettings settings;
 };

@@ -97,7 +97,7 @@ int score(const DeviceInfo& d) {
   return s;
 }
 
-Result<VkInstance> createInstance(bool validation, bool& debugUtils) {
+Result<VkInstance> createInstance(bool validation, bool labels, bool& debugUtils) {
   if (volkInitialize() != VK_SUCCESS)
     return makeError(ExitCode::NoDevice, "no Vulkan loader found (libvulkan.so.1); install a Vulkan driver");
   if (volkGetInstanceVersion() < VK_API_VERSION_1_3)
@@ -108,7 +108,7 @@ Result<VkInstance> createInstance(bool validation, bool& debugUtils) {
   std::vector<VkExtensionProperties> available(n);
   vkEnumerateInstanceExtensionProperties(nullptr, &n, available.data());
   std::vector<const char*> exts;
-  debugUtils = hasExtension(available, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  debugUtils = (validation || labels) && hasExtension(available, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   if (debugUtils) exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
 
   std::vector<const char*> layers;
@@ -175,7 +175,7 @@ const char* DeviceInfo::typeName() const {
 
 Result<std::vector<DeviceInfo>> Context::listDevices() {
   bool debugUtils = false;
-  auto instance = createInstance(false, debugUtils);
+  auto instance = createInstance(false, false, debugUtils);
   if (!instance) return instance.error();
   auto devices = enumerate(*instance);
   vkDestroyInstance(*instance, nullptr);
@@ -184,7 +184,7 @@ Result<std::vector<DeviceInfo>> Context::listDevices() {
 
 Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
   std::unique_ptr<Context> ctx(new Context());
-  auto instance = createInstance(options.validation, ctx->debugUtils_);
+  auto instance = createInstance(options.validation, options.debugLabels, ctx->debugUtils_);
   if (!instance) return instance.error();
   ctx->instance_ = *instance;
   ctx->validation_ = options.validation;

@@ -46,6 +46,7 @@ struct DeviceInfo {
 struct ContextOptions {
   bool validation = false;        // Khronos validation layer + synchronization validation
   bool requireRayTracing = true;  // fail with MissingCapability when absent
+  bool debugLabels = true;        // pass labels and object names for captures and validation messages
   std::string deviceFilter;       // substring of the device name to prefer; empty: best device
 };
 
