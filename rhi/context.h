@@ -46,8 +46,8 @@ struct DeviceInfo {
 struct ContextOptions {
   bool validation = false;        // Khronos validation layer + synchronization validation
   bool requireRayTracing = true;  // fail with MissingCapability when absent
-  bool debugLabels = true;        // pass labels and object names for captures and validation messages
   std::string deviceFilter;       // substring of the device name to prefer; empty: best device
+  bool debugLabels = true;        // pass labels and object names for captures and validation messages
 };
 
 class Context {
