@@ -26,6 +26,10 @@ Status validatePrimitive(const Scene& scene, const Mesh& mesh, size_t meshIndex,
     return makeError(ExitCode::BadInput, "{}: {} normals for {} positions", where, prim.normals.size(), vertexCount);
   if (!prim.uvs.empty() && prim.uvs.size() != vertexCount)
     return makeError(ExitCode::BadInput, "{}: {} uvs for {} positions", where, prim.uvs.size(), vertexCount);
+  if (!prim.uvs1.empty() && prim.uvs1.size() != vertexCount)
+    return makeError(ExitCode::BadInput, "{}: {} second uvs for {} positions", where, prim.uvs1.size(), vertexCount);
+  if (!prim.tangents.empty() && prim.tangents.size() != vertexCount)
+    return makeError(ExitCode::BadInput, "{}: {} tangents for {} positions", where, prim.tangents.size(), vertexCount);
   if (prim.indices.size() % 3 != 0)
     return makeError(ExitCode::BadInput, "{}: index count {} is not a multiple of 3", where, prim.indices.size());
   for (size_t i = 0; i < prim.indices.size(); ++i)
@@ -56,6 +60,11 @@ Aabb Scene::bounds() const {
     if (instance.mesh >= meshes.size()) continue;
     for (const Primitive& prim : meshes[instance.mesh].primitives)
       for (const glm::vec3& p : prim.positions) box.extend(glm::vec3(instance.worldFromObject * glm::vec4(p, 1.0f)));
+    for (const Sphere& s : meshes[instance.mesh].spheres)
+      for (int corner = 0; corner < 8; ++corner) {
+        glm::vec3 c = s.center + s.radius * glm::vec3(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1, corner & 4 ? 1 : -1);
+        box.extend(glm::vec3(instance.worldFromObject * glm::vec4(c, 1.0f)));
+      }
   }
   return box;
 }
@@ -71,6 +80,33 @@ size_t Scene::triangleCount() const {
 
 Status validate(const Scene& scene) {
   const std::string sceneName = scene.name.empty() ? std::string("scene") : scene.name;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    if (!mesh.primitives.empty() && !mesh.spheres.empty())
+      return makeError(ExitCode::BadInput, "{}: holds both triangles and spheres", meshLabel(mesh, m));
+    for (const Sphere& s : mesh.spheres)
+      if (!finite(s.center) || !std::isfinite(s.radius) || s.radius <= 0.0f || s.material >= scene.materials.size())
+        return makeError(ExitCode::BadInput, "{}: a sphere has a bad centre, radius or material", meshLabel(mesh, m));
+  }
+  for (size_t i = 0; i < scene.textures.size(); ++i)
+    if (scene.textures[i].image >= scene.images.size() || scene.textures[i].sampler >= scene.samplers.size())
+      return makeError(ExitCode::BadInput, "{}: texture {} refers to a missing image or sampler", sceneName, i);
+  for (size_t i = 0; i < scene.images.size(); ++i) {
+    const ImageData& img = scene.images[i];
+    if (img.width <= 0 || img.height <= 0 || img.rgba.size() != size_t(img.width) * size_t(img.height) * 4)
+      return makeError(ExitCode::BadInput, "{}: image {} '{}' has inconsistent size", sceneName, i, img.name);
+  }
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    const Material& mat = scene.materials[i];
+    for (const TextureRef* t : {&mat.baseColorTexture, &mat.metallicRoughnessTexture, &mat.normalTexture,
+                                &mat.occlusionTexture, &mat.emissiveTexture})
+      if (t->valid() && (size_t(t->texture) >= scene.textures.size() || t->texCoord > 1))
+        return makeError(ExitCode::BadInput, "{}: material {} '{}' uses a missing texture or UV set", sceneName, i,
+                         mat.name);
+  }
+  if (scene.environment.kind == Environment::Kind::Map &&
+      scene.environment.rgb.size() != size_t(scene.environment.width) * size_t(scene.environment.height) * 3)
+    return makeError(ExitCode::BadInput, "{}: environment map has inconsistent size", sceneName);
   for (size_t m = 0; m < scene.meshes.size(); ++m)
     for (size_t p = 0; p < scene.meshes[m].primitives.size(); ++p)
       RAYSTER_TRY(validatePrimitive(scene, scene.meshes[m], m, scene.meshes[m].primitives[p], p));

@@ -13,27 +13,86 @@
 
 namespace rayster::scene {
 
-// glTF metallic-roughness subset; textures and transmission are added as loaders need them.
+// A texture as a material uses it: which texture, which UV set, and KHR_texture_transform.
+struct TextureRef {
+  int32_t texture = -1;  // index into Scene::textures; -1: none
+  uint32_t texCoord = 0; // UV set (0 or 1)
+  glm::vec2 offset{0.0f};
+  glm::vec2 scale{1.0f};
+  float rotation = 0.0f; // radians, counter-clockwise in UV space (KHR_texture_transform)
+  bool valid() const { return texture >= 0; }
+};
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+// glTF 2.0 metallic-roughness with the KHR_materials_* extensions Rayster renders.
 struct Material {
   std::string name;
-  glm::vec4 baseColor{1.0f};
+  glm::vec4 baseColor{1.0f};  // linear; alpha is coverage
   float metallic = 0.0f;
   float roughness = 1.0f;
-  glm::vec3 emissive{0.0f}; // linear radiance, strength folded in
+  glm::vec3 emissive{0.0f};   // linear radiance, KHR_materials_emissive_strength folded in
   bool doubleSided = false;
+  TextureRef baseColorTexture;          // sRGB
+  TextureRef metallicRoughnessTexture;  // linear: G roughness, B metallic
+  TextureRef normalTexture;             // linear, tangent space
+  TextureRef occlusionTexture;          // linear: R
+  TextureRef emissiveTexture;           // sRGB
+  float normalScale = 1.0f;
+  float occlusionStrength = 1.0f;
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
+  float transmission = 0.0f;            // KHR_materials_transmission
+  float ior = 1.5f;                     // KHR_materials_ior
+  float thickness = 0.0f;               // KHR_materials_volume; 0: thin-walled
+  glm::vec3 attenuationColor{1.0f};
+  float attenuationDistance = FLT_MAX;
+  float specular = 1.0f;                // KHR_materials_specular
+  glm::vec3 specularColor{1.0f};
+};
+
+// Decoded 8-bit RGBA pixels, as stored in a file (sRGB or linear is decided by the use).
+struct ImageData {
+  std::string name;
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;
+};
+
+enum class Wrap { Repeat, ClampToEdge, MirroredRepeat };
+enum class Filter { Nearest, Linear };
+struct Sampler {
+  Wrap wrapS = Wrap::Repeat, wrapT = Wrap::Repeat;
+  Filter magFilter = Filter::Linear, minFilter = Filter::Linear;
+  bool mipmaps = true;
+};
+
+struct Texture {
+  uint32_t image = 0;
+  uint32_t sampler = 0;  // index into Scene::samplers
 };
 
 struct Primitive {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
-  std::vector<glm::vec2> uvs; // may be empty
-  std::vector<uint32_t> indices; // triangle list, counter-clockwise seen from the front
+  std::vector<glm::vec4> tangents;  // xyz tangent, w bitangent sign; may be empty (generated on upload)
+  std::vector<glm::vec2> uvs;       // UV set 0; may be empty
+  std::vector<glm::vec2> uvs1;      // UV set 1; may be empty
+  std::vector<uint32_t> indices;    // triangle list, counter-clockwise seen from the front
   uint32_t material = 0;
 };
 
+// Analytic sphere, traced as AABB geometry with an intersection shader.
+struct Sphere {
+  glm::vec3 center{0.0f};
+  float radius = 1.0f;
+  uint32_t material = 0;
+};
+
+// A mesh holds triangle primitives or spheres, never both (one BLAS each).
 struct Mesh {
   std::string name;
   std::vector<Primitive> primitives;
+  std::vector<Sphere> spheres;
 };
 
 struct Instance {
@@ -67,6 +126,26 @@ struct Camera {
   float zFar = 100.0f;
 };
 
+// Light arriving from infinity where rays escape: nothing, a procedural sky, or an HDR map.
+struct Environment {
+  enum class Kind { Black, Sky, Map } kind = Kind::Black;
+  std::string mapPath;  // for Map: the equirectangular .hdr/.exr it was read from
+  int width = 0, height = 0;
+  std::vector<float> rgb;  // Map: linear RGB, width × height × 3, top row first (+Y up)
+  float intensity = 1.0f;
+  float rotation = 0.0f;  // radians about +Y
+  glm::vec3 zenith{0.25f, 0.45f, 0.9f};   // Sky
+  glm::vec3 horizon{0.85f, 0.9f, 1.0f};
+  glm::vec3 ground{0.3f, 0.28f, 0.25f};
+};
+
+// A keyframed camera path for animated and benchmark runs; linear between keys.
+struct CameraKey {
+  float time = 0.0f;  // seconds
+  glm::vec3 position{0.0f};
+  glm::vec3 target{0.0f};
+};
+
 struct Aabb {
   glm::vec3 min{FLT_MAX}, max{-FLT_MAX};
   void extend(glm::vec3 p);
@@ -78,9 +157,14 @@ struct Scene {
   std::string name;
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
+  std::vector<ImageData> images;
+  std::vector<Sampler> samplers;
+  std::vector<Texture> textures;
   std::vector<Instance> instances;
   std::vector<Light> lights;
   std::vector<Camera> cameras;
+  std::vector<CameraKey> cameraPath;
+  Environment environment;
   glm::vec3 ambient{0.0f}; // uniform ambient radiance, stand-in for indirect light until RT indirect exists
 
   Aabb bounds() const; // world-space, over all instances

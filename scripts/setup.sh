@@ -22,6 +22,7 @@ PACKAGES=(
   libglm-dev libfmt-dev libcli11-dev nlohmann-json3-dev libstb-dev
   libtinyexr-dev libgtest-dev libgmock-dev
   libglvnd0 libgl1 libegl1 libopengl0  # bundled for GPU machines by scripts/bundle-gpu.sh
+  libtinygltf-dev libtinyobjloader-dev assimp-testmodels clang libfuzzer-14-dev
 )
 
 missing=()
