@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "rhi/context.h"
+#include "scene/tangents.h"
 #include "shaders/shared/types.h"
 
 namespace rayster::render {
@@ -13,6 +14,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+constexpr VkBufferUsageFlags kGeometryUsage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
 
 template <class T>
 rhi::Buffer tableBuffer(rhi::Context& ctx, const std::vector<T>& rows, const char* name) {
@@ -34,14 +38,60 @@ gpu::LightRecord toRecord(const scene::Light& l) {
   return r;
 }
 
+bool alphaTested(const scene::Scene& scene, uint32_t material) {
+  return material < scene.materials.size() && scene.materials[material].alphaMode != scene::AlphaMode::Opaque;
+}
+
+// Triangles: vertices (with tangents) and indices; the BLAS reads positions at offset 0.
+void addTriangles(rhi::Context& ctx, const scene::Scene& scene, const scene::Primitive& src, GpuScene& gs,
+                  std::vector<gpu::GeometryRecord>& rows, std::vector<rhi::BlasGeometry>& blas) {
+  scene::Primitive prim = src;
+  if (prim.tangents.size() != prim.positions.size()) scene::generateTangents(prim);
+  std::vector<gpu::Vertex> vertices(prim.positions.size());
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    vertices[i].position = prim.positions[i];
+    vertices[i].normal = prim.normals.empty() ? glm::vec3(0, 1, 0) : prim.normals[i];
+    vertices[i].tangent = prim.tangents[i];
+    vertices[i].uv0 = prim.uvs.empty() ? glm::vec2(0) : prim.uvs[i];
+    vertices[i].uv1 = prim.uvs1.empty() ? vertices[i].uv0 : prim.uvs1[i];
+  }
+  const rhi::Buffer& vb = gs.vertexBuffers.emplace_back(
+      rhi::createBufferWithData(ctx, std::as_bytes(std::span(vertices)), kGeometryUsage, "vertices"));
+  const rhi::Buffer& ib = gs.indexBuffers.emplace_back(
+      rhi::createBufferWithData(ctx, std::as_bytes(std::span(prim.indices)), kGeometryUsage, "indices"));
+  rows.push_back({vb.address(), ib.address(), prim.material, uint32_t(vertices.size()),
+                  uint32_t(prim.indices.size()), gpu::kGeometryTriangles});
+  blas.push_back({0, 0, vb.address(), sizeof(gpu::Vertex), uint32_t(vertices.size()), ib.address(),
+                  uint32_t(prim.indices.size()), !alphaTested(scene, prim.material)});
+}
+
+// Spheres: one AABB each for the BLAS, and SphereRecords for the intersection shader.
+void addSpheres(rhi::Context& ctx, const scene::Scene& scene, const std::vector<scene::Sphere>& spheres, GpuScene& gs,
+                std::vector<gpu::GeometryRecord>& rows, std::vector<rhi::BlasGeometry>& blas) {
+  std::vector<VkAabbPositionsKHR> boxes;
+  std::vector<gpu::SphereRecord> records;
+  bool opaque = true;
+  for (const scene::Sphere& s : spheres) {
+    boxes.push_back({s.center.x - s.radius, s.center.y - s.radius, s.center.z - s.radius, s.center.x + s.radius,
+                     s.center.y + s.radius, s.center.z + s.radius});
+    records.push_back({s.center, s.radius, s.material, 0, 0, 0});
+    opaque = opaque && !alphaTested(scene, s.material);
+  }
+  const rhi::Buffer& ab = gs.vertexBuffers.emplace_back(
+      rhi::createBufferWithData(ctx, std::as_bytes(std::span(boxes)), kGeometryUsage, "sphere-aabbs"));
+  const rhi::Buffer& sb = gs.indexBuffers.emplace_back(
+      rhi::createBufferWithData(ctx, std::as_bytes(std::span(records)), kGeometryUsage, "spheres"));
+  rows.push_back({sb.address(), ab.address(), records.front().material, uint32_t(records.size()), 0,
+                  gpu::kGeometrySpheres});
+  blas.push_back({uint32_t(boxes.size()), ab.address(), 0, 0, 0, 0, 0, opaque});
+}
+
 } // namespace
 
 Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   RAYSTER_TRY(scene::validate(scene));
   GpuScene gs;
   auto t0 = Clock::now();
-  const VkBufferUsageFlags geometryUsage =
-      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
 
   std::vector<gpu::GeometryRecord> geometryRows;
   std::vector<uint32_t> meshFirstGeometry;
@@ -52,42 +102,45 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     auto& inputs = blasInputs.emplace_back();
     uint64_t triangles = 0;
     for (const scene::Primitive& prim : mesh.primitives) {
-      std::vector<gpu::Vertex> vertices(prim.positions.size());
-      for (size_t i = 0; i < vertices.size(); ++i) {
-        vertices[i].position = prim.positions[i];
-        vertices[i].normal = prim.normals.empty() ? glm::vec3(0, 1, 0) : prim.normals[i];
-        vertices[i].uv = prim.uvs.empty() ? glm::vec2(0) : prim.uvs[i];
-      }
-      const rhi::Buffer& vb = gs.vertexBuffers.emplace_back(
-          rhi::createBufferWithData(ctx, std::as_bytes(std::span(vertices)), geometryUsage, "vertices"));
-      const rhi::Buffer& ib = gs.indexBuffers.emplace_back(
-          rhi::createBufferWithData(ctx, std::as_bytes(std::span(prim.indices)), geometryUsage, "indices"));
-      geometryRows.push_back({vb.address(), ib.address(), prim.material, uint32_t(vertices.size()),
-                              uint32_t(prim.indices.size()), 0});
-      inputs.push_back({vb.address(), sizeof(gpu::Vertex), uint32_t(vertices.size()), ib.address(),
-                        uint32_t(prim.indices.size()), true});
+      addTriangles(ctx, scene, prim, gs, geometryRows, inputs);
       triangles += prim.indices.size() / 3;
     }
+    if (!mesh.spheres.empty()) addSpheres(ctx, scene, mesh.spheres, gs, geometryRows, inputs);
     meshTriangles.push_back(triangles);
   }
-
-  std::vector<gpu::MaterialRecord> materialRows;
-  for (const scene::Material& m : scene.materials)
-    materialRows.push_back({m.baseColor, m.emissive, m.metallic, m.roughness, 0, 0, 0});
-  if (materialRows.empty()) materialRows.push_back({glm::vec4(0.8f), glm::vec3(0), 0, 1, 0, 0, 0});
+  uploadMaterials(ctx, scene, gs);
+  uploadEnvironment(ctx, scene, gs);
 
   std::vector<gpu::InstanceRecord> instanceRows;
   std::vector<VkAccelerationStructureInstanceKHR> tlasInstances;
   for (uint32_t i = 0; i < scene.instances.size(); ++i) {
     const scene::Instance& inst = scene.instances[i];
+    const scene::Mesh& mesh = scene.meshes[inst.mesh];
+    if (mesh.primitives.empty() && mesh.spheres.empty()) continue;  // nothing to trace or draw
     const uint32_t mask = gpu::kMaskVisible | (inst.castsShadows ? gpu::kMaskCastsShadow : 0u);
+    const uint32_t row = uint32_t(instanceRows.size());
     instanceRows.push_back({inst.worldFromObject, glm::inverseTranspose(inst.worldFromObject),
                             meshFirstGeometry[inst.mesh], mask, 0, 0});
-    for (uint32_t p = 0; p < scene.meshes[inst.mesh].primitives.size(); ++p)
-      gs.draws.push_back({i, meshFirstGeometry[inst.mesh] + p,
-                          uint32_t(scene.meshes[inst.mesh].primitives[p].indices.size())});
+    for (uint32_t p = 0; p < mesh.primitives.size(); ++p)
+      gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + p, uint32_t(mesh.primitives[p].indices.size()), false});
+    if (!mesh.spheres.empty())
+      gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + uint32_t(mesh.primitives.size()),
+                          uint32_t(mesh.spheres.size()), true});
     gs.triangleCount += meshTriangles[inst.mesh];
+    gs.sphereCount += mesh.spheres.size();
+
+    VkAccelerationStructureInstanceKHR ti{};
+    const glm::mat4& m = inst.worldFromObject;  // column-major; VkTransformMatrixKHR is 3x4 row-major
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c) ti.transform.matrix[r][c] = m[c][r];
+    ti.instanceCustomIndex = row;
+    ti.mask = mask;
+    ti.instanceShaderBindingTableRecordOffset = mesh.spheres.empty() ? gpu::kHitGroupTriangles : gpu::kHitGroupSpheres;
+    ti.flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR;
+    ti.accelerationStructureReference = inst.mesh;  // patched with the BLAS address below
+    tlasInstances.push_back(ti);
   }
+  if (instanceRows.empty()) return makeError(ExitCode::BadInput, "scene '{}' has nothing to render", scene.name);
 
   std::vector<gpu::LightRecord> lightRows;
   for (const scene::Light& l : scene.lights) lightRows.push_back(toRecord(l));
@@ -96,25 +149,12 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
 
   gs.geometries = tableBuffer(ctx, geometryRows, "geometries");
   gs.instances = tableBuffer(ctx, instanceRows, "instances");
-  gs.materials = tableBuffer(ctx, materialRows, "materials");
   gs.lights = tableBuffer(ctx, lightRows, "lights");
   gs.uploadMs = msSince(t0);
 
   auto t1 = Clock::now();
   gs.blases = rhi::buildBlases(ctx, blasInputs, &gs.accelStats);
-  for (uint32_t i = 0; i < scene.instances.size(); ++i) {
-    const scene::Instance& inst = scene.instances[i];
-    VkAccelerationStructureInstanceKHR ti{};
-    const glm::mat4& m = inst.worldFromObject;  // column-major; VkTransformMatrixKHR is 3x4 row-major
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 4; ++c) ti.transform.matrix[r][c] = m[c][r];
-    ti.instanceCustomIndex = i;
-    ti.mask = instanceRows[i].mask;
-    ti.instanceShaderBindingTableRecordOffset = 0;
-    ti.flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR;
-    ti.accelerationStructureReference = gs.blases[inst.mesh].address();
-    tlasInstances.push_back(ti);
-  }
+  for (auto& ti : tlasInstances) ti.accelerationStructureReference = gs.blases[ti.accelerationStructureReference].address();
   gs.tlas = rhi::buildTlas(ctx, tlasInstances, &gs.accelStats);
   gs.accelBuildMs = msSince(t1);
   return gs;

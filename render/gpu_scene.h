@@ -1,35 +1,62 @@
 #pragma once
-// The scene on the GPU: vertex and index buffers per primitive, the geometry / instance / material /
-// light tables (read through device addresses, layouts in shaders/shared/types.h), one compacted
-// BLAS per unique mesh and a TLAS of instances.
+// The scene on the GPU: vertex and index buffers per primitive, sphere buffers, the geometry /
+// instance / material / light tables (read through device addresses, layouts in
+// shaders/shared/types.h), textures in the bindless array, the environment, one compacted BLAS per
+// unique mesh and a TLAS of instances.
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "core/error.h"
 #include "rhi/accel.h"
+#include "rhi/bindless.h"
 #include "rhi/resources.h"
 #include "scene/scene.h"
 
 namespace rayster::render {
 
+struct GpuEnvironment {
+  uint32_t kind = 0;                 // gpu::kEnvironment*
+  uint32_t slot = 0xFFFFFFFFu;       // bindless slot of the equirect map
+  std::array<glm::vec3, 9> irradianceSh{};  // cosine-convolved SH9 of the radiance, × intensity
+};
+
 struct GpuScene {
   struct Draw {
     uint32_t instance;
     uint32_t geometry;
-    uint32_t indexCount;
+    uint32_t count;  // triangles: index count; spheres: sphere count (one box each)
+    bool spheres;
   };
-  std::vector<rhi::Buffer> vertexBuffers;  // one per primitive
-  std::vector<rhi::Buffer> indexBuffers;
+  std::vector<rhi::Buffer> vertexBuffers;  // one per primitive (AABBs for sphere sets)
+  std::vector<rhi::Buffer> indexBuffers;   // one per primitive (SphereRecords for sphere sets)
   rhi::Buffer geometries, instances, materials, lights;
+  std::vector<rhi::Image> textures;
+  std::vector<rhi::Sampler> samplers;
+  std::unique_ptr<rhi::BindlessTextures> bindless;
+  rhi::Image environmentMap;
+  GpuEnvironment environment;
   std::vector<rhi::AccelerationStructure> blases;
   rhi::AccelerationStructure tlas;
-  std::vector<Draw> draws;  // raster: one per (instance, primitive)
+  std::vector<Draw> draws;  // raster: one per (instance, primitive or sphere set)
   uint32_t lightCount = 0;
-  uint64_t triangleCount = 0;  // over all instances
+  bool anyAlphaTested = false;  // MASK or BLEND somewhere: rays may not be forced opaque
+  uint64_t triangleCount = 0;   // over all instances
+  uint64_t sphereCount = 0;
   rhi::AccelBuildStats accelStats;
   double uploadMs = 0, accelBuildMs = 0;
 };
 
 Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene);
+
+// Materials and textures (render/gpu_materials.cpp).
+void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs);
+// Environment map and its irradiance (render/gpu_environment.cpp).
+void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs);
+// Uploads RGBA8 pixels to a sampled image with a full mip chain (render/gpu_materials.cpp).
+rhi::Image uploadTexture(rhi::Context& ctx, const scene::ImageData& image);
 
 } // namespace rayster::render

@@ -10,9 +10,10 @@ constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kTlas = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
 } // namespace
 
-Pipelines Pipelines::create(rhi::Context& ctx) {
+Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   Pipelines p;
   rhi::GraphicsPipelineDesc g;
+  g.globalSet = textures;
   g.vertex = "gbuffer.vert";
   g.fragment = "gbuffer.frag";
   g.colorFormats = {kNormalFormat, kAlbedoFormat, kMaterialFormat, kEmissiveFormat, kIdFormat};
@@ -20,21 +21,28 @@ Pipelines Pipelines::create(rhi::Context& ctx) {
   g.bindings = {{0, kUniform}};
   g.pushConstantBytes = 8;
   p.gbufferRaster = rhi::createGraphicsPipeline(ctx, g);
+  g.vertex = "gbuffer_sphere.vert";
+  g.fragment = "gbuffer_sphere.frag";
+  p.gbufferSpheres = rhi::createGraphicsPipeline(ctx, g);
+
+  // Hit groups by geometry kind (gpu::kHitGroupTriangles, gpu::kHitGroupSpheres): alpha-tested
+  // triangles run any-hit; spheres run their intersection shader.
 
   rhi::RayTracingPipelineDesc primary;
   primary.raygen = "gbuffer.rgen";
   primary.miss = {"primary.rmiss"};
-  primary.hitGroups = {{"primary.rchit", "", ""}};
+  primary.hitGroups = {{"primary.rchit", "alpha.rahit", ""}, {"primary.rchit", "", "sphere.rint"}};
+  primary.globalSet = textures;
   primary.bindings = {{0, kUniform}, {1, kTlas},    {2, kStorage}, {3, kStorage},
                       {4, kStorage}, {5, kStorage}, {6, kStorage}, {7, kStorage}};
   p.gbufferTraced = rhi::RayTracingPipeline(ctx, primary);
 
-  // Shadow rays skip closest hit and never need any-hit while all geometry is opaque: the hit
-  // group is empty, the miss shader marks visibility.
+  // Shadow rays skip closest hit: the miss shader marks visibility, any-hit tests alpha.
   rhi::RayTracingPipelineDesc shadow;
   shadow.raygen = "shadows.rgen";
   shadow.miss = {"shadow.rmiss"};
-  shadow.hitGroups = {{"", "", ""}};
+  shadow.hitGroups = {{"", "alpha.rahit", ""}, {"", "", "sphere.rint"}};
+  shadow.globalSet = textures;
   shadow.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kStorage}};
   p.shadows = rhi::RayTracingPipeline(ctx, shadow);
 
@@ -42,7 +50,7 @@ Pipelines Pipelines::create(rhi::Context& ctx) {
   p.shadowAccumulate = rhi::createComputePipeline(ctx, "shadow_accumulate.comp", accumulate, 16);
   const rhi::Binding lighting[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled},
                                    {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage}};
-  p.lighting = rhi::createComputePipeline(ctx, "lighting.comp", lighting, 0);
+  p.lighting = rhi::createComputePipeline(ctx, "lighting.comp", lighting, 0, textures);
   const rhi::Binding tone[] = {{1, kSampled}, {2, kStorage}};
   p.tonemap = rhi::createComputePipeline(ctx, "tonemap.comp", tone, 16);
   return p;

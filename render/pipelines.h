@@ -20,13 +20,15 @@ inline constexpr VkFormat kVisibilityHistoryFormat = VK_FORMAT_R32_SFLOAT;  // a
 
 struct Pipelines {
   rhi::Pipeline gbufferRaster;
+  rhi::Pipeline gbufferSpheres;  // raster impostors for analytic spheres
   rhi::RayTracingPipeline gbufferTraced;
   rhi::RayTracingPipeline shadows;
   rhi::Pipeline shadowAccumulate;
   rhi::Pipeline lighting;
   rhi::Pipeline tonemap;
 
-  static Pipelines create(rhi::Context& ctx);
+  // textures: the layout of the bindless texture set (set 1 of every pipeline that shades).
+  static Pipelines create(rhi::Context& ctx, VkDescriptorSetLayout textures);
 };
 
 } // namespace rayster::render

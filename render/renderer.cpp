@@ -43,7 +43,7 @@ struct Renderer::Impl {
   uint32_t frameIndex = 0;
 
   Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
-      : ctx(c), scene(s), gpu(std::move(g)), pipelines(Pipelines::create(c)),
+      : ctx(c), scene(s), gpu(std::move(g)), pipelines(Pipelines::create(c, gpu.bindless->layout())),
         nearest(c, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
         constants(c, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, rhi::MemoryUsage::Upload,
                   "frame-constants"),
@@ -71,6 +71,15 @@ struct Renderer::Impl {
     fc.instances = gpu.instances.address();
     fc.materials = gpu.materials.address();
     fc.lights = gpu.lights.address();
+    const scene::Environment& env = scene.environment;
+    fc.environmentKind = gpu.environment.kind;
+    fc.environment = glm::vec4(glm::vec3(env.intensity), env.rotation);
+    fc.environmentSlot = gpu.environment.slot;
+    fc.skyZenith = env.zenith;
+    fc.skyHorizon = env.horizon;
+    fc.skyGround = env.ground;
+    for (int k = 0; k < 9; ++k) fc.irradianceSh[k] = glm::vec4(gpu.environment.irradianceSh[k], 0.0f);
+    fc.sceneFlags = gpu.anyAlphaTested ? gpu::kSceneAlphaTested : 0u;
     std::memcpy(constants.mapped(), &fc, sizeof(fc));
   }
 
@@ -89,7 +98,7 @@ struct Renderer::Impl {
     double ms = 0;
     for (int run = 0; run < 2; ++run) {
       graph::RenderGraph graph(&ctx, &transients);
-      FrameInputs in{pipelines, gpu, constants, nearest, {s.width, s.height}};
+      FrameInputs in{pipelines, gpu, constants, nearest, {s.width, s.height}, gpu.bindless->set()};
       GBuffer gb = p == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
       graph.addPass("keep", [&](graph::PassBuilder& b) {
         b.read(gb.normals, graph::Use::SampledCompute);
@@ -140,7 +149,7 @@ struct Renderer::Impl {
       writeConstants(s, *cam);
       const bool last = f + 1 == s.frames;
       graph::RenderGraph graph(&ctx, &transients);
-      FrameInputs in{pipelines, gpu, constants, nearest, {s.width, s.height}};
+      FrameInputs in{pipelines, gpu, constants, nearest, {s.width, s.height}, gpu.bindless->set()};
 
       GBuffer gb = out.primaryUsed == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
       graph::ImageHandle raw = traceShadows(graph, in, gb, shadowLights());

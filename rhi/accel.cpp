@@ -73,12 +73,25 @@ std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std
   VkDeviceSize scratchTotal = 0;
   const VkDeviceSize scratchAlign = std::max<uint32_t>(ctx.caps().minScratchOffsetAlignment, 1);
 
-  for (size_t m = 0; m < n; ++m) {
+  std::vector<size_t> todo;  // meshes with geometry; an empty mesh gets no BLAS
+  for (size_t m = 0; m < n; ++m)
+    if (!meshes[m].empty()) todo.push_back(m);
+  for (size_t m : todo) {
     std::vector<uint32_t> maxPrims;
     for (const BlasGeometry& g : meshes[m]) {
       VkAccelerationStructureGeometryKHR geo{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
-      geo.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
       geo.flags = g.opaque ? VK_GEOMETRY_OPAQUE_BIT_KHR : 0;
+      if (g.aabbCount > 0) {
+        geo.geometryType = VK_GEOMETRY_TYPE_AABBS_KHR;
+        geo.geometry.aabbs.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_AABBS_DATA_KHR;
+        geo.geometry.aabbs.data.deviceAddress = g.aabbAddress;
+        geo.geometry.aabbs.stride = sizeof(VkAabbPositionsKHR);
+        geoms[m].push_back(geo);
+        ranges[m].push_back({g.aabbCount, 0, 0, 0});
+        maxPrims.push_back(g.aabbCount);
+        continue;
+      }
+      geo.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
       auto& t = geo.geometry.triangles;
       t.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR;
       t.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;
@@ -112,49 +125,53 @@ std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std
     scratchTotal = alignUp(scratchTotal + sizes.buildScratchSize, scratchAlign);
     if (stats) stats->builtBytes += sizes.accelerationStructureSize;
   }
-  if (n == 0) return built;
+  if (todo.empty()) return built;
 
   Buffer scratch(ctx, scratchTotal + scratchAlign, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly,
                  "blas-scratch");
   const VkDeviceAddress scratchBase = alignUp(scratch.address(), scratchAlign);
-  std::vector<const VkAccelerationStructureBuildRangeInfoKHR*> rangePtrs(n);
-  for (size_t m = 0; m < n; ++m) {
+  std::vector<VkAccelerationStructureBuildGeometryInfoKHR> buildInfos;
+  std::vector<const VkAccelerationStructureBuildRangeInfoKHR*> rangePtrs;
+  for (size_t m : todo) {
     infos[m].scratchData.deviceAddress = scratchBase + scratchOffsets[m];
-    rangePtrs[m] = ranges[m].data();
+    buildInfos.push_back(infos[m]);
+    rangePtrs.push_back(ranges[m].data());
   }
+  const uint32_t count = uint32_t(todo.size());
 
   VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   qci.queryType = VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR;
-  qci.queryCount = uint32_t(n);
+  qci.queryCount = count;
   VkQueryPool pool = VK_NULL_HANDLE;
   VK_CHECK(vkCreateQueryPool(ctx.device(), &qci, nullptr, &pool));
   {
     OneShot cmd(ctx);
-    vkCmdResetQueryPool(cmd, pool, 0, uint32_t(n));
-    vkCmdBuildAccelerationStructuresKHR(cmd, uint32_t(n), infos.data(), rangePtrs.data());
+    vkCmdResetQueryPool(cmd, pool, 0, count);
+    vkCmdBuildAccelerationStructuresKHR(cmd, count, buildInfos.data(), rangePtrs.data());
     asBuildBarrier(cmd, VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                    VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR);
     std::vector<VkAccelerationStructureKHR> handles;
-    for (auto& b : built) handles.push_back(b.handle());
-    vkCmdWriteAccelerationStructuresPropertiesKHR(cmd, uint32_t(n), handles.data(),
+    for (size_t m : todo) handles.push_back(built[m].handle());
+    vkCmdWriteAccelerationStructuresPropertiesKHR(cmd, count, handles.data(),
                                                   VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR, pool, 0);
     cmd.submitAndWait();
   }
-  std::vector<VkDeviceSize> compacted(n);
-  VK_CHECK(vkGetQueryPoolResults(ctx.device(), pool, 0, uint32_t(n), n * sizeof(VkDeviceSize), compacted.data(),
+  std::vector<VkDeviceSize> compacted(count);
+  VK_CHECK(vkGetQueryPoolResults(ctx.device(), pool, 0, count, count * sizeof(VkDeviceSize), compacted.data(),
                                  sizeof(VkDeviceSize), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   vkDestroyQueryPool(ctx.device(), pool, nullptr);
 
   std::vector<AccelerationStructure> result(n);
   OneShot cmd(ctx);
-  for (size_t m = 0; m < n; ++m) {
-    result[m] = createAccelerationStructure(ctx, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, compacted[m], "blas");
+  for (size_t k = 0; k < todo.size(); ++k) {
+    const size_t m = todo[k];
+    result[m] = createAccelerationStructure(ctx, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, compacted[k], "blas");
     VkCopyAccelerationStructureInfoKHR copy{VK_STRUCTURE_TYPE_COPY_ACCELERATION_STRUCTURE_INFO_KHR};
     copy.src = built[m].handle();
     copy.dst = result[m].handle();
     copy.mode = VK_COPY_ACCELERATION_STRUCTURE_MODE_COMPACT_KHR;
     vkCmdCopyAccelerationStructureKHR(cmd, &copy);
-    if (stats) stats->compactedBytes += compacted[m];
+    if (stats) stats->compactedBytes += compacted[k];
   }
   asBuildBarrier(cmd, VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR | VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR,
                  VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR);

@@ -37,6 +37,8 @@ AccelerationStructure createAccelerationStructure(Context& ctx, VkAccelerationSt
                                                   const char* name);
 
 struct BlasGeometry {
+  uint32_t aabbCount = 0;             // > 0: procedural geometry, VkAabbPositionsKHR at aabbAddress
+  VkDeviceAddress aabbAddress = 0;
   VkDeviceAddress vertexAddress = 0;  // R32G32B32 positions at offset 0 of each vertex
   uint32_t vertexStride = 0;
   uint32_t vertexCount = 0;

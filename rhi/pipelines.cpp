@@ -43,7 +43,8 @@ VkShaderModule createShaderModule(Context& ctx, std::string_view name) {
   return module;
 }
 
-void PipelineBuilder::makeLayout(Context& ctx, Pipeline& p, std::span<const Binding> bindings, uint32_t pushBytes) {
+void PipelineBuilder::makeLayout(Context& ctx, Pipeline& p, std::span<const Binding> bindings, uint32_t pushBytes,
+                                 VkDescriptorSetLayout globalSet) {
   p.ctx_ = &ctx;
   std::vector<VkDescriptorSetLayoutBinding> b;
   for (const Binding& x : bindings) b.push_back({x.binding, x.type, x.count, p.stages_, nullptr});
@@ -54,18 +55,19 @@ void PipelineBuilder::makeLayout(Context& ctx, Pipeline& p, std::span<const Bind
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device(), &sci, nullptr, &p.setLayout_));
   VkPushConstantRange range{p.stages_, 0, pushBytes};
   VkPipelineLayoutCreateInfo lci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  lci.setLayoutCount = 1;
-  lci.pSetLayouts = &p.setLayout_;
+  const VkDescriptorSetLayout sets[2] = {p.setLayout_, globalSet};
+  lci.setLayoutCount = globalSet ? 2 : 1;
+  lci.pSetLayouts = sets;
   lci.pushConstantRangeCount = pushBytes ? 1 : 0;
   lci.pPushConstantRanges = &range;
   VK_CHECK(vkCreatePipelineLayout(ctx.device(), &lci, nullptr, &p.layout_));
 }
 
 Pipeline createComputePipeline(Context& ctx, std::string_view shader, std::span<const Binding> bindings,
-                               uint32_t pushConstantBytes) {
+                               uint32_t pushConstantBytes, VkDescriptorSetLayout globalSet) {
   Pipeline p;
   p.stages_ = VK_SHADER_STAGE_COMPUTE_BIT;
-  PipelineBuilder::makeLayout(ctx, p, bindings, pushConstantBytes);
+  PipelineBuilder::makeLayout(ctx, p, bindings, pushConstantBytes, globalSet);
   VkShaderModule module = createShaderModule(ctx, shader);
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -84,7 +86,7 @@ Pipeline createComputePipeline(Context& ctx, std::string_view shader, std::span<
 Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
   Pipeline p;
   p.stages_ = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-  PipelineBuilder::makeLayout(ctx, p, d.bindings, d.pushConstantBytes);
+  PipelineBuilder::makeLayout(ctx, p, d.bindings, d.pushConstantBytes, d.globalSet);
   VkShaderModule vs = createShaderModule(ctx, d.vertex);
   VkShaderModule fs = createShaderModule(ctx, d.fragment);
   VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},

@@ -37,7 +37,8 @@ class Pipeline {
 
  protected:
   friend struct PipelineBuilder;
-  friend Pipeline createComputePipeline(Context&, std::string_view, std::span<const struct Binding>, uint32_t);
+  friend Pipeline createComputePipeline(Context&, std::string_view, std::span<const struct Binding>, uint32_t,
+                                        VkDescriptorSetLayout);
   friend Pipeline createGraphicsPipeline(Context&, const struct GraphicsPipelineDesc&);
   Context* ctx_ = nullptr;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
@@ -50,8 +51,9 @@ class Pipeline {
 // Shader modules come from the SPIR-V embedded at build time (shaders/embedded.h).
 VkShaderModule createShaderModule(Context& ctx, std::string_view name);
 
+// globalSet: an optional set 1 layout (the bindless textures), VK_NULL_HANDLE for none.
 Pipeline createComputePipeline(Context& ctx, std::string_view shader, std::span<const Binding> bindings,
-                               uint32_t pushConstantBytes);
+                               uint32_t pushConstantBytes, VkDescriptorSetLayout globalSet = VK_NULL_HANDLE);
 
 struct GraphicsPipelineDesc {
   std::string_view vertex, fragment;
@@ -60,6 +62,7 @@ struct GraphicsPipelineDesc {
   VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
   std::vector<Binding> bindings;
   uint32_t pushConstantBytes = 0;
+  VkDescriptorSetLayout globalSet = VK_NULL_HANDLE;
 };
 Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc);
 
@@ -87,7 +90,8 @@ class DescriptorWriter {
 
 // Shared by the pipeline factories in rhi/.
 struct PipelineBuilder {
-  static void makeLayout(Context& ctx, Pipeline& p, std::span<const Binding> bindings, uint32_t pushBytes);
+  static void makeLayout(Context& ctx, Pipeline& p, std::span<const Binding> bindings, uint32_t pushBytes,
+                         VkDescriptorSetLayout globalSet);
   static void setHandle(Pipeline& p, VkPipeline handle, VkPipelineBindPoint bindPoint) {
     p.pipeline_ = handle;
     p.bindPoint_ = bindPoint;

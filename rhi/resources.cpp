@@ -60,10 +60,19 @@ VkImageAspectFlags Image::aspect() const {
 
 Image::Image(Context& ctx, const ImageDesc& desc, const char* name) : ctx_(&ctx), desc_(desc) {
   VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  const VkFormat viewFormats[2] = {desc.format, VK_FORMAT_R8G8B8A8_SRGB};
+  VkImageFormatListCreateInfo formatList{VK_STRUCTURE_TYPE_IMAGE_FORMAT_LIST_CREATE_INFO};
+  formatList.viewFormatCount = 2;
+  formatList.pViewFormats = viewFormats;
+  if (desc.srgbView) {
+    RAYSTER_ASSERT(desc.format == VK_FORMAT_R8G8B8A8_UNORM, "sRGB views are for RGBA8 images");
+    ci.flags = VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT;
+    ci.pNext = &formatList;
+  }
   ci.imageType = VK_IMAGE_TYPE_2D;
   ci.format = desc.format;
   ci.extent = {desc.width, desc.height, 1};
-  ci.mipLevels = 1;
+  ci.mipLevels = desc.mips;
   ci.arrayLayers = desc.layers;
   ci.samples = VK_SAMPLE_COUNT_1_BIT;
   ci.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -78,8 +87,12 @@ Image::Image(Context& ctx, const ImageDesc& desc, const char* name) : ctx_(&ctx)
   vi.image = image_;
   vi.viewType = desc.layers > 1 || desc.array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   vi.format = desc.format;
-  vi.subresourceRange = {aspect(), 0, 1, 0, desc.layers};
+  vi.subresourceRange = {aspect(), 0, desc.mips, 0, desc.layers};
   VK_CHECK(vkCreateImageView(ctx.device(), &vi, nullptr, &view_));
+  if (desc.srgbView) {
+    vi.format = VK_FORMAT_R8G8B8A8_SRGB;
+    VK_CHECK(vkCreateImageView(ctx.device(), &vi, nullptr, &srgbView_));
+  }
   ctx.setName(VK_OBJECT_TYPE_IMAGE, uint64_t(image_), name);
   ctx.setName(VK_OBJECT_TYPE_IMAGE_VIEW, uint64_t(view_), name);
 }
@@ -90,6 +103,7 @@ Image& Image::operator=(Image&& o) noexcept {
     ctx_ = std::exchange(o.ctx_, nullptr);
     image_ = std::exchange(o.image_, VK_NULL_HANDLE);
     view_ = std::exchange(o.view_, VK_NULL_HANDLE);
+    srgbView_ = std::exchange(o.srgbView_, VK_NULL_HANDLE);
     allocation_ = std::exchange(o.allocation_, {});
     desc_ = o.desc_;
   }
@@ -98,22 +112,31 @@ Image& Image::operator=(Image&& o) noexcept {
 
 void Image::reset() {
   if (!image_) return;
-  ctx_->retire([ctx = ctx_, i = image_, v = view_, a = allocation_] {
+  ctx_->retire([ctx = ctx_, i = image_, v = view_, sv = srgbView_, a = allocation_] {
     vkDestroyImageView(ctx->device(), v, nullptr);
+    if (sv) vkDestroyImageView(ctx->device(), sv, nullptr);
     vkDestroyImage(ctx->device(), i, nullptr);
     ctx->memory().free(a);
   });
   image_ = VK_NULL_HANDLE;
   view_ = VK_NULL_HANDLE;
+  srgbView_ = VK_NULL_HANDLE;
   allocation_ = {};
 }
 
-Sampler::Sampler(Context& ctx, VkFilter filter, VkSamplerAddressMode address) : ctx_(&ctx) {
+Sampler::Sampler(Context& ctx, VkFilter filter, VkSamplerAddressMode address)
+    : Sampler(ctx, filter, filter, address, address, false) {}
+
+Sampler::Sampler(Context& ctx, VkFilter mag, VkFilter min, VkSamplerAddressMode u, VkSamplerAddressMode v, bool mips)
+    : ctx_(&ctx) {
   VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  ci.magFilter = ci.minFilter = filter;
+  ci.magFilter = mag;
+  ci.minFilter = min;
   ci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-  ci.addressModeU = ci.addressModeV = ci.addressModeW = address;
-  ci.maxLod = VK_LOD_CLAMP_NONE;
+  ci.addressModeU = u;
+  ci.addressModeV = v;
+  ci.addressModeW = u;
+  ci.maxLod = mips ? VK_LOD_CLAMP_NONE : 0.0f;
   VK_CHECK(vkCreateSampler(ctx.device(), &ci, nullptr, &sampler_));
 }
 

@@ -41,6 +41,8 @@ struct ImageDesc {
   uint32_t width = 1, height = 1, layers = 1;
   VkImageUsageFlags usage = 0;
   bool array = false;  // view as an array even with one layer (shaders declaring image2DArray)
+  uint32_t mips = 1;
+  bool srgbView = false;  // RGBA8 UNORM image that also gets an sRGB view (colour textures)
   bool operator==(const ImageDesc&) const = default;
 };
 
@@ -57,6 +59,7 @@ class Image {
 
   VkImage handle() const { return image_; }
   VkImageView view() const { return view_; }
+  VkImageView srgbView() const { return srgbView_; }
   const ImageDesc& desc() const { return desc_; }
   VkExtent2D extent() const { return {desc_.width, desc_.height}; }
   VkImageAspectFlags aspect() const;
@@ -66,6 +69,7 @@ class Image {
   Context* ctx_ = nullptr;
   VkImage image_ = VK_NULL_HANDLE;
   VkImageView view_ = VK_NULL_HANDLE;
+  VkImageView srgbView_ = VK_NULL_HANDLE;
   Allocation allocation_;
   ImageDesc desc_;
 };
@@ -74,6 +78,7 @@ class Sampler {
  public:
   Sampler() = default;
   Sampler(Context& ctx, VkFilter filter, VkSamplerAddressMode address);
+  Sampler(Context& ctx, VkFilter mag, VkFilter min, VkSamplerAddressMode u, VkSamplerAddressMode v, bool mipmaps);
   ~Sampler() { reset(); }
   Sampler(Sampler&& o) noexcept { *this = std::move(o); }
   Sampler& operator=(Sampler&& o) noexcept;

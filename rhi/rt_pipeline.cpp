@@ -29,7 +29,7 @@ SbtLayout computeSbtLayout(uint32_t handleSize, uint32_t handleAlignment, uint32
 RayTracingPipeline::RayTracingPipeline(Context& ctx, const RayTracingPipelineDesc& d) {
   stages_ = VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_MISS_BIT_KHR | VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR |
             VK_SHADER_STAGE_ANY_HIT_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR;
-  PipelineBuilder::makeLayout(ctx, *this, d.bindings, d.pushConstantBytes);
+  PipelineBuilder::makeLayout(ctx, *this, d.bindings, d.pushConstantBytes, d.globalSet);
 
   std::vector<VkPipelineShaderStageCreateInfo> stages;
   std::vector<VkRayTracingShaderGroupCreateInfoKHR> groups;

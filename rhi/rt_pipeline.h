@@ -22,6 +22,7 @@ struct RayTracingPipelineDesc {
   std::vector<Binding> bindings;
   uint32_t pushConstantBytes = 0;
   uint32_t maxRecursionDepth = 1;
+  VkDescriptorSetLayout globalSet = VK_NULL_HANDLE;  // set 1 (bindless textures)
 };
 
 // Where each region of the SBT starts; computed from device properties, never hard-coded: lavapipe

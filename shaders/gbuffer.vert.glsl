@@ -7,7 +7,9 @@ layout(push_constant, scalar) uniform Push { uint instance; uint geometry; } pc;
 
 layout(location = 0) out vec3 outWorldPos;
 layout(location = 1) out vec3 outNormal;
-layout(location = 2) out vec2 outUv;
+layout(location = 2) out vec4 outTangent;
+layout(location = 3) out vec2 outUv0;
+layout(location = 4) out vec2 outUv1;
 
 void main() {
   InstanceRecord inst = Instances(frame.instances).i[pc.instance];
@@ -17,6 +19,8 @@ void main() {
   vec4 world = inst.worldFromObject * vec4(v.position, 1.0);
   outWorldPos = world.xyz;
   outNormal = (inst.normalFromObject * vec4(v.normal, 0.0)).xyz;
-  outUv = v.uv;
+  outTangent = vec4((inst.worldFromObject * vec4(v.tangent.xyz, 0.0)).xyz, v.tangent.w);
+  outUv0 = v.uv0;
+  outUv1 = v.uv1;
   gl_Position = frame.clipFromWorld * world;
 }

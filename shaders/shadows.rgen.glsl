@@ -41,8 +41,9 @@ void main() {
   float eps = max(max(abs(p.x), max(abs(p.y), abs(p.z))), 1.0) * 1e-4;
   vec3 origin = p + ng * eps;
   visible = 0u;
-  traceRayEXT(tlas,
-              gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT,
-              kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, max(dist - eps, 0.0), 0);
+  // Opaque (no any-hit) only when no geometry needs alpha testing (TECHNIQUES.md §4).
+  uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT |
+               ((frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT);
+  traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, max(dist - eps, 0.0), 0);
   imageStore(outVisibility, ivec3(px, layer), vec4(float(visible)));
 }

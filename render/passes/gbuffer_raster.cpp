@@ -33,6 +33,10 @@ GBuffer createGBufferTargets(graph::RenderGraph& graph, VkExtent2D size, bool tr
   return gb;
 }
 
+void bindTextures(VkCommandBuffer cmd, const FrameInputs& in, VkPipelineBindPoint bindPoint, VkPipelineLayout layout) {
+  vkCmdBindDescriptorSets(cmd, bindPoint, layout, 1, 1, &in.textures, 0, nullptr);
+}
+
 GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
   GBuffer gb = createGBufferTargets(graph, in.size, false);
   graph.addPass(
@@ -71,13 +75,21 @@ GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
         VkRect2D scissor{{0, 0}, in.size};
         vkCmdSetViewport(pc.cmd, 0, 1, &vp);
         vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
-        const rhi::Pipeline& pipe = in.pipelines.gbufferRaster;
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.handle());
-        rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
-        for (const GpuScene::Draw& d : in.scene.draws) {
-          uint32_t push[2] = {d.instance, d.geometry};
-          vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), push);
-          vkCmdDraw(pc.cmd, d.indexCount, 1, 0, 0);
+        // Triangles first, then sphere impostors (their bounding cubes, one instance per sphere).
+        for (bool spheres : {false, true}) {
+          const rhi::Pipeline& pipe = spheres ? in.pipelines.gbufferSpheres : in.pipelines.gbufferRaster;
+          vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.handle());
+          rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
+          bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.layout());
+          for (const GpuScene::Draw& d : in.scene.draws) {
+            if (d.spheres != spheres) continue;
+            uint32_t push[2] = {d.instance, d.geometry};
+            vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), push);
+            if (spheres)
+              vkCmdDraw(pc.cmd, 36, d.count, 0, 0);
+            else
+              vkCmdDraw(pc.cmd, d.count, 1, 0, 0);
+          }
         }
         vkCmdEndRendering(pc.cmd);
       });

@@ -28,6 +28,7 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
             .storageImage(6, pc.image(gb.emissive).view())
             .storageImage(7, pc.image(gb.id).view())
             .push(pc.cmd, pipe);
+        bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.layout());
         pipe.trace(pc.cmd, in.size.width, in.size.height);
       });
   return gb;

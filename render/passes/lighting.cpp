@@ -31,6 +31,7 @@ graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& i
             .sampledImage(6, pc.image(visibility).view(), s)
             .storageImage(7, pc.image(hdr).view())
             .push(pc.cmd, pipe);
+        bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.layout());
         vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
       });
   return hdr;

@@ -24,7 +24,11 @@ struct FrameInputs {
   const rhi::Buffer& constants;  // FrameConstants, written by the host before submission
   const rhi::Sampler& nearest;
   VkExtent2D size;
+  VkDescriptorSet textures;  // set 1: the scene's bindless textures
 };
+
+// Binds the bindless texture set as set 1 of `pipeline`.
+void bindTextures(VkCommandBuffer cmd, const FrameInputs& in, VkPipelineBindPoint bindPoint, VkPipelineLayout layout);
 
 struct GBuffer {
   graph::ImageHandle depth;     // D32 (raster) or R32F (traced): sample .r either way

@@ -27,6 +27,7 @@ graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in
             .sampledImage(3, pc.image(gb.normals).view(), in.nearest.handle())
             .storageImage(4, pc.image(vis).view())
             .push(pc.cmd, pipe);
+        bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.layout());
         if (lights > 0) pipe.trace(pc.cmd, in.size.width, in.size.height, lights);
       });
   return vis;

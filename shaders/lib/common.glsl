@@ -18,6 +18,7 @@ layout(buffer_reference, scalar) readonly buffer Geometries { GeometryRecord g[]
 layout(buffer_reference, scalar) readonly buffer Instances { InstanceRecord i[]; };
 layout(buffer_reference, scalar) readonly buffer Materials { MaterialRecord m[]; };
 layout(buffer_reference, scalar) readonly buffer Lights { LightRecord l[]; };
+layout(buffer_reference, scalar) readonly buffer Spheres { SphereRecord s[]; };
 
 // Octahedral normal encoding (TECHNIQUES.md §1).
 vec2 octEncode(vec3 n) {
@@ -54,6 +55,7 @@ float rnd(inout uint state) {
 
 // Streams, so toggling one effect leaves the others' noise unchanged.
 const uint kShadowStream = 0x51A0u;
+const uint kAlphaStream = 0xA1FAu;
 
 // Branchless orthonormal basis (Duff et al. 2017).
 void orthonormalBasis(vec3 n, out vec3 t, out vec3 b) {

@@ -1,13 +1,22 @@
 // Surface evaluation shared by both G-buffer producers (raster and traced primary rays), so they
-// write identical values for the same surface point.
+// write identical values for the same surface point. Needs lib/textures.glsl.
 #ifndef RAYSTER_SURFACE_GLSL
 #define RAYSTER_SURFACE_GLSL
 
 struct GBufferValues {
   vec4 normals;   // xy: shading normal (oct), zw: geometric normal (oct)
-  vec4 albedo;    // rgb: sRGB-encoded base colour, a: material AO
-  vec4 material;  // roughness, metallic, transmission, flags
+  vec4 albedo;    // rgb: sRGB-encoded base colour, a: material ambient occlusion
+  vec4 material;  // roughness, metallic, transmission, flags / 255
   vec4 emissive;  // rgb: linear radiance
+};
+
+struct SurfacePoint {
+  vec3 position;
+  vec3 normal;           // interpolated shading normal (world)
+  vec4 tangent;          // world tangent, w: bitangent sign
+  vec3 geometricNormal;  // from the triangle (or the sphere)
+  vec2 uv0;
+  vec2 uv1;
 };
 
 // World-space positions of triangle `primitive` of a geometry, transformed by its instance.
@@ -20,20 +29,48 @@ void trianglePositions(GeometryRecord g, InstanceRecord inst, uint primitive, ou
   p2 = (inst.worldFromObject * vec4(vtx.v[idx.i[base + 2u]].position, 1.0)).xyz;
 }
 
+// Coverage of a surface point: base colour alpha × texture alpha.
+float materialAlpha(MaterialRecord m, vec2 uv0, vec2 uv1) {
+  return m.baseColor.a * SAMPLE_SLOT(m.baseColorTexture, uv0, uv1, vec4(1.0)).a;
+}
+
+// Alpha test for MASK (cutoff) and BLEND (stochastic coverage against `u`, converging over frames).
+bool alphaRejects(MaterialRecord m, vec2 uv0, vec2 uv1, float u) {
+  if ((m.flags & (kMaterialAlphaMask | kMaterialAlphaBlend)) == 0u) return false;
+  float a = materialAlpha(m, uv0, uv1);
+  return (m.flags & kMaterialAlphaMask) != 0u ? a < m.alphaCutoff : a <= u;
+}
+
 // Both normals face the viewer: the geometric normal from the triangle, the shading normal flipped
 // with it, so back faces of double-sided surfaces shade like front faces.
-GBufferValues evaluateSurface(MaterialRecord m, vec3 worldPos, vec3 shadingNormal, vec3 geometricNormal,
-                              vec2 uv, vec3 cameraPos) {
-  vec3 ng = normalize(geometricNormal);
-  vec3 ns = normalize(shadingNormal);
-  vec3 toCamera = cameraPos - worldPos;
-  if (dot(ng, toCamera) < 0.0) ng = -ng;
+GBufferValues evaluateSurface(MaterialRecord m, SurfacePoint sp, vec3 cameraPos) {
+  vec3 ng = normalize(sp.geometricNormal);
+  vec3 ns = normalize(sp.normal);
+  if (dot(ng, cameraPos - sp.position) < 0.0) ng = -ng;
   if (dot(ns, ng) < 0.0) ns = -ns;
+
+  vec4 base = m.baseColor * SAMPLE_SLOT(m.baseColorTexture, sp.uv0, sp.uv1, vec4(1.0));
+  vec4 mr = SAMPLE_SLOT(m.metallicRoughnessTexture, sp.uv0, sp.uv1, vec4(1.0));
+  float roughness = clamp(m.roughness * mr.g, 0.0, 1.0);
+  float metallic = clamp(m.metallic * mr.b, 0.0, 1.0);
+  if (m.normalTexture.slot != kNoTexture) {
+    vec3 t = sp.tangent.xyz - ns * dot(ns, sp.tangent.xyz);
+    if (dot(t, t) > 1e-12) {
+      t = normalize(t);
+      vec3 b = cross(ns, t) * (sp.tangent.w < 0.0 ? -1.0 : 1.0);
+      vec3 tn = SAMPLE_SLOT(m.normalTexture, sp.uv0, sp.uv1, vec4(0.5, 0.5, 1.0, 1.0)).xyz * 2.0 - 1.0;
+      tn.xy *= m.normalScale;
+      ns = normalize(t * tn.x + b * tn.y + ns * tn.z);
+    }
+  }
+  float ao = 1.0 + m.occlusionStrength * (SAMPLE_SLOT(m.occlusionTexture, sp.uv0, sp.uv1, vec4(1.0)).r - 1.0);
+  vec3 emissive = m.emissive * SAMPLE_SLOT(m.emissiveTexture, sp.uv0, sp.uv1, vec4(1.0)).rgb;
+
   GBufferValues o;
   o.normals = vec4(octEncode(ns), octEncode(ng));
-  o.albedo = vec4(linearToSrgb(m.baseColor.rgb), 1.0);
-  o.material = vec4(m.roughness, m.metallic, 0.0, 0.0);
-  o.emissive = vec4(m.emissive, 0.0);
+  o.albedo = vec4(linearToSrgb(base.rgb), ao);
+  o.material = vec4(roughness, metallic, m.transmission, float(m.flags & 0xFFu) / 255.0);
+  o.emissive = vec4(emissive, 0.0);
   return o;
 }
 

@@ -28,21 +28,64 @@ RAYSTER_CONST uint kLightDirectional = 2u;
 
 RAYSTER_CONST uint kMaxShadowLights = 8u;  // one visibility layer each
 RAYSTER_CONST uint kBackgroundId = 0xFFFFFFFFu;
+RAYSTER_CONST uint kNoTexture = 0xFFFFFFFFu;
+
+// MaterialRecord::flags
+RAYSTER_CONST uint kMaterialDoubleSided = 1u;
+RAYSTER_CONST uint kMaterialAlphaMask = 2u;   // alpha test against alphaCutoff (any-hit, discard)
+RAYSTER_CONST uint kMaterialAlphaBlend = 4u;  // stochastic (hashed) coverage, converges over frames
+
+// GeometryRecord::kind
+RAYSTER_CONST uint kGeometryTriangles = 0u;
+RAYSTER_CONST uint kGeometrySpheres = 1u;  // vertexAddress points at SphereRecord[]
+
+// SBT hit-group offsets per geometry kind (instanceShaderBindingTableRecordOffset).
+RAYSTER_CONST uint kHitGroupTriangles = 0u;
+RAYSTER_CONST uint kHitGroupSpheres = 1u;
+
+// FrameConstants::sceneFlags
+RAYSTER_CONST uint kSceneAlphaTested = 1u;  // some geometry runs any-hit: rays may not be forced opaque
+
+// Environment kinds (FrameConstants::environmentKind)
+RAYSTER_CONST uint kEnvironmentBlack = 0u;
+RAYSTER_CONST uint kEnvironmentSky = 1u;
+RAYSTER_CONST uint kEnvironmentMap = 2u;
 
 struct Vertex {
   vec3 position;  // offset 0: the BLAS reads R32G32B32 positions with this stride
   vec3 normal;
-  vec2 uv;
+  vec4 tangent;   // xyz tangent, w bitangent sign
+  vec2 uv0;
+  vec2 uv1;
+};
+
+struct SphereRecord {
+  vec3 center;
+  float radius;
+  uint material;
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+// A material's use of a texture: bindless slot (kNoTexture: none), UV set, KHR_texture_transform.
+struct TextureSlot {
+  uint slot;
+  uint texCoord;
+  float rotation;
+  float pad0;
+  vec2 offset;
+  vec2 scale;
 };
 
 // One per primitive (BLAS geometry): where its vertices and indices live.
 struct GeometryRecord {
   uint64_t vertexAddress;
   uint64_t indexAddress;
-  uint material;
+  uint material;  // triangles; spheres carry their own
   uint vertexCount;
   uint indexCount;
-  uint pad0;
+  uint kind;
 };
 
 // One per TLAS instance; gl_InstanceCustomIndexEXT is its row.
@@ -61,8 +104,21 @@ struct MaterialRecord {
   float metallic;
   float roughness;
   uint flags;
-  uint pad0;
-  uint pad1;
+  float alphaCutoff;
+  float normalScale;
+  float occlusionStrength;
+  float transmission;
+  float ior;
+  float thickness;
+  vec3 attenuationColor;
+  float attenuationDistance;
+  vec3 specularColor;
+  float specular;
+  TextureSlot baseColorTexture;  // sRGB view
+  TextureSlot metallicRoughnessTexture;
+  TextureSlot normalTexture;
+  TextureSlot occlusionTexture;
+  TextureSlot emissiveTexture;   // sRGB view
 };
 
 struct LightRecord {
@@ -89,7 +145,15 @@ struct FrameConstants {
   uint lightCount;
   uint shadowLightCount;  // lights with a visibility layer (<= kMaxShadowLights)
   float exposure;         // linear multiplier, 2^EV
-  uint pad0;
+  uint environmentKind;
+  vec4 environment;       // rgb: intensity × (1,1,1) scale; w: rotation about +Y (radians)
+  vec3 skyZenith;
+  uint environmentSlot;   // bindless slot of the equirect map
+  vec3 skyHorizon;
+  uint sceneFlags;        // kScene* bits
+  vec3 skyGround;
+  uint pad1;
+  vec4 irradianceSh[9];   // environment irradiance, order-2 spherical harmonics (rgb)
   uint64_t geometries;  // GeometryRecord[]
   uint64_t instances;   // InstanceRecord[]
   uint64_t materials;   // MaterialRecord[]
@@ -97,15 +161,20 @@ struct FrameConstants {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(Vertex) == 32);
+static_assert(sizeof(Vertex) == 56);
+static_assert(sizeof(SphereRecord) == 32);
+static_assert(sizeof(TextureSlot) == 32);
 static_assert(sizeof(GeometryRecord) == 32);
 static_assert(sizeof(InstanceRecord) == 144);
 static_assert(offsetof(InstanceRecord, firstGeometry) == 128);
-static_assert(sizeof(MaterialRecord) == 48);
+static_assert(offsetof(MaterialRecord, baseColorTexture) == 96);
+static_assert(sizeof(MaterialRecord) == 256);
 static_assert(sizeof(LightRecord) == 64);
 static_assert(offsetof(FrameConstants, size) == 160);
-static_assert(offsetof(FrameConstants, geometries) == 192);
-static_assert(sizeof(FrameConstants) == 224);
+static_assert(offsetof(FrameConstants, environment) == 192);
+static_assert(offsetof(FrameConstants, irradianceSh) == 256);
+static_assert(offsetof(FrameConstants, geometries) == 400);
+static_assert(sizeof(FrameConstants) == 432);
 } // namespace rayster::gpu
 #endif
 

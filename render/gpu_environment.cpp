@@ -1,0 +1,128 @@
+// The environment: an equirectangular HDR map in the bindless array (or the procedural sky), and
+// its diffuse irradiance as cosine-convolved order-2 spherical harmonics (Ramamoorthi & Hanrahan
+// 2001), projected here on the CPU once per scene.
+#include <cmath>
+#include <cstring>
+
+#include "core/half.h"
+#include "render/gpu_scene.h"
+#include "rhi/commands.h"
+#include "rhi/context.h"
+#include "shaders/shared/types.h"
+
+namespace rayster::render {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+// Must match skyRadiance() in shaders/lib/environment.glsl.
+glm::vec3 skyRadiance(const scene::Environment& e, glm::vec3 d) {
+  if (d.y >= 0.0f) return glm::mix(e.horizon, e.zenith, std::sqrt(d.y));
+  return glm::mix(e.horizon, e.ground, std::sqrt(std::min(-d.y * 4.0f, 1.0f)));
+}
+
+std::array<float, 9> shBasis(glm::vec3 d) {
+  return {0.282095f,
+          0.488603f * d.y,
+          0.488603f * d.z,
+          0.488603f * d.x,
+          1.092548f * d.x * d.y,
+          1.092548f * d.y * d.z,
+          0.315392f * (3.0f * d.z * d.z - 1.0f),
+          1.092548f * d.x * d.z,
+          0.546274f * (d.x * d.x - d.y * d.y)};
+}
+
+// Direction of the centre of texel (x, y) of an equirect map; must match equirectUv() in GLSL.
+glm::vec3 equirectDirection(float u, float v) {
+  const float phi = (u - 0.5f) * 2.0f * kPi, theta = v * kPi;
+  return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
+}
+
+} // namespace
+
+void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs) {
+  const scene::Environment& env = scene.environment;
+  GpuEnvironment& out = gs.environment;
+  out.kind = env.kind == scene::Environment::Kind::Map   ? gpu::kEnvironmentMap
+             : env.kind == scene::Environment::Kind::Sky ? gpu::kEnvironmentSky
+                                                         : gpu::kEnvironmentBlack;
+  std::array<glm::vec3, 9> sh{};
+  if (out.kind == gpu::kEnvironmentMap) {
+    const uint32_t w = uint32_t(env.width), h = uint32_t(env.height);
+    std::vector<uint16_t> halves(size_t(w) * h * 4);
+    for (size_t i = 0; i < size_t(w) * h; ++i) {
+      for (int c = 0; c < 3; ++c) halves[i * 4 + c] = floatToHalf(std::min(env.rgb[i * 3 + c], 65000.0f));
+      halves[i * 4 + 3] = floatToHalf(1.0f);
+    }
+    gs.environmentMap = rhi::Image(ctx, {VK_FORMAT_R16G16B16A16_SFLOAT, w, h, 1,
+                                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT},
+                                   "environment");
+    rhi::Buffer staging(ctx, halves.size() * 2, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, rhi::MemoryUsage::Upload, "staging");
+    std::memcpy(staging.mapped(), halves.data(), halves.size() * 2);
+    rhi::OneShot cmd(ctx);
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = gs.environmentMap.handle();
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {w, h, 1};
+    vkCmdCopyBufferToImage(cmd, staging.handle(), gs.environmentMap.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                           &region);
+    b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    b.dstAccessMask = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+    b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    vkCmdPipelineBarrier2(cmd, &dep);
+    cmd.submitAndWait();
+    // Longitude wraps, latitude clamps at the poles.
+    gs.samplers.emplace_back(ctx, VK_FILTER_LINEAR, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT,
+                             VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false);
+    out.slot = gs.bindless->add(gs.environmentMap.view(), gs.samplers.back().handle());
+
+    // Project at most ~256×128 texels: irradiance is smooth, more adds time, not accuracy.
+    const uint32_t step = std::max(1u, std::max(w / 256, h / 128));
+    double weightSum = 0;
+    for (uint32_t y = 0; y < h; y += step)
+      for (uint32_t x = 0; x < w; x += step) {
+        const float u = (x + 0.5f) / w, v = (y + 0.5f) / h;
+        const float dOmega = (2.0f * kPi * step / w) * (kPi * step / h) * std::sin(v * kPi);
+        glm::vec3 d = equirectDirection(u, v);
+        const size_t i = (size_t(y) * w + x) * 3;
+        glm::vec3 radiance(env.rgb[i], env.rgb[i + 1], env.rgb[i + 2]);
+        auto basis = shBasis(d);
+        for (int k = 0; k < 9; ++k) sh[k] += radiance * (basis[k] * dOmega);
+        weightSum += dOmega;
+      }
+    // Normalise the quadrature to exactly 4π so a constant map gives exactly its irradiance.
+    for (auto& c : sh) c *= float(4.0 * kPi / weightSum);
+  } else if (out.kind == gpu::kEnvironmentSky) {
+    const int n = 64;
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < 2 * n; ++x) {
+        const float u = (x + 0.5f) / (2 * n), v = (y + 0.5f) / n;
+        const float dOmega = (2.0f * kPi / (2 * n)) * (kPi / n) * std::sin(v * kPi);
+        glm::vec3 d = equirectDirection(u, v);
+        auto basis = shBasis(d);
+        glm::vec3 radiance = skyRadiance(env, d);
+        for (int k = 0; k < 9; ++k) sh[k] += radiance * (basis[k] * dOmega);
+      }
+  }
+  // Convolve with the clamped cosine: A0 = π, A1 = 2π/3, A2 = π/4. Rotation about +Y is applied in
+  // the shader to the lookup direction, so the map and its irradiance stay consistent.
+  const float band[9] = {kPi, 2 * kPi / 3, 2 * kPi / 3, 2 * kPi / 3, kPi / 4, kPi / 4, kPi / 4, kPi / 4, kPi / 4};
+  for (int k = 0; k < 9; ++k) out.irradianceSh[k] = sh[k] * band[k] * env.intensity;
+}
+
+} // namespace rayster::render

@@ -1,0 +1,17 @@
+// Fragment outputs of the raster G-buffer producers (triangles and sphere impostors).
+layout(location = 0) out vec4 outNormals;
+layout(location = 1) out vec4 outAlbedo;
+layout(location = 2) out vec4 outMaterial;
+layout(location = 3) out vec4 outEmissive;
+layout(location = 4) out uint outId;
+
+void writeGBuffer(GBufferValues gb, uint id) {
+  outNormals = gb.normals;
+  outAlbedo = gb.albedo;
+  outMaterial = gb.material;
+  outEmissive = gb.emissive;
+  outId = id;
+}
+
+// Per-pixel, per-frame coverage noise for alpha BLEND (stochastic transparency).
+float alphaNoise(uvec2 px) { return float(rngInit(px, frame.frameIndex, frame.seed ^ kAlphaStream) >> 8) / 16777216.0; }
