@@ -13,7 +13,7 @@
 #include "core/image_io.h"
 #include "core/log.h"
 #include "rhi/context.h"
-#include "scene/builtin.h"
+#include "scene/loader.h"
 
 namespace rayster::app {
 namespace {
@@ -33,13 +33,6 @@ Status checkOutputPath(const std::string& path, const char* what, std::initializ
   for (const char* e : exts)
     if (ext == e) return okStatus();
   return makeError(ExitCode::BadArguments, "{} '{}' must end in {}", what, path, *exts.begin());
-}
-
-Result<scene::Scene> loadScene(const std::string& name) {
-  if (name.rfind("builtin:", 0) == 0) return scene::makeBuiltinScene(name);
-  if (!std::filesystem::exists(name)) return makeError(ExitCode::BadInput, "cannot read scene '{}': no such file", name);
-  return makeError(ExitCode::BadInput, "cannot load '{}': only built-in scenes (builtin:cornell) are supported so far",
-                   name);
 }
 
 nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, const render::RenderOutput& out) {
@@ -71,8 +64,12 @@ int renderCommand(const RenderOptions& o) {
   if (!o.jsonOutput.empty())
     if (auto s = checkOutputPath(o.jsonOutput, "--json", {".json"}); !s) return fail(s.error());
 
-  auto scene = loadScene(o.scene);
+  auto loadStart = std::chrono::steady_clock::now();
+  auto scene = scene::loadScene(o.scene);
   if (!scene) return fail(scene.error());
+  log::info("loaded {} ({} triangles, {} instances) in {:.0f} ms", o.scene, scene->triangleCount(),
+            scene->instances.size(),
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count());
   auto ctx = rhi::Context::create({o.validation, true, o.device, o.debugLabels});
   if (!ctx) return fail(ctx.error());
   log::debug("device: {} ({}), driver {}", (*ctx)->info().name, (*ctx)->info().typeName(), (*ctx)->info().driverInfo);

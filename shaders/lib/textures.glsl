@@ -13,8 +13,9 @@ layout(set = 1, binding = 0) uniform sampler2D textures[];
 vec2 transformUv(TextureSlot t, vec2 uv0, vec2 uv1) {
   vec2 uv = (t.texCoord == 1u ? uv1 : uv0) * t.scale;
   float c = cos(t.rotation), s = sin(t.rotation);
-  // glTF KHR_texture_transform: translation × rotation × scale.
-  return t.offset + vec2(c * uv.x - s * uv.y, s * uv.x + c * uv.y);
+  // glTF KHR_texture_transform: translation × rotation × scale, with the rotation matrix read in the
+  // spec's row order (u' = c·u + s·v), which is what the TextureTransformTest sample model checks.
+  return t.offset + vec2(c * uv.x + s * uv.y, -s * uv.x + c * uv.y);
 }
 
 #define SAMPLE_SLOT(t, uv0, uv1, fallback) \

@@ -5,40 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/render/golden.h"
 #include "tests/render/run_rayster.h"
 
 namespace rayster::test {
 namespace {
 
 constexpr int kW = 160, kH = 120;
-// DESIGN.md §6: at most 2/255 per channel on at least 99.9 % of the pixels.
-constexpr int kGoldenTolerance = 2;
-constexpr double kGoldenFraction = 0.999;
-
-std::filesystem::path goldenPath(const std::string& name) {
-  return std::filesystem::path(RAYSTER_SOURCE_DIR) / "tests" / "golden" / (name + ".png");
-}
-
-// Compares with the committed golden; RAYSTER_BLESS=1 rewrites the golden instead (scripts/bless-goldens.sh).
-void expectMatchesGolden(const Image8& actual, const std::string& name, const std::filesystem::path& dir) {
-  auto golden = goldenPath(name);
-  if (const char* bless = std::getenv("RAYSTER_BLESS"); bless && std::string(bless) == "1") {
-    ASSERT_TRUE(writePng(golden, actual).ok());
-    GTEST_SKIP() << "blessed " << golden;
-  }
-  auto expected = readPng(golden);
-  ASSERT_TRUE(expected.ok()) << "missing golden " << golden << " (run scripts/bless-goldens.sh)";
-  ASSERT_EQ(expected->width, actual.width);
-  ASSERT_EQ(expected->height, actual.height);
-  ImageDiff diff = compare(*expected, actual, kGoldenTolerance);
-  if (diff.fractionWithinTolerance < kGoldenFraction) {
-    (void)writePng(dir / (name + ".actual.png"), actual);
-    (void)writePng(dir / (name + ".diff.png"), diff.heatmap);
-  }
-  EXPECT_GE(diff.fractionWithinTolerance, kGoldenFraction)
-      << name << ": max channel diff " << diff.maxChannelDiff << ", PSNR " << diff.psnr << " dB; actual and diff in "
-      << dir;
-}
 
 TEST(Render, CornellMatchesGolden) {
   auto dir = testDir();

@@ -1,0 +1,90 @@
+// Goldens and behaviour checks for the built-in scenes, real glTF files and scene files, rendered
+// through the real binary with validation on.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "tests/render/fixtures.h"
+#include "tests/render/golden.h"
+#include "tests/render/run_rayster.h"
+
+namespace rayster::test {
+namespace {
+
+constexpr int kW = 160, kH = 120;
+const std::filesystem::path kAssimpGltf2 = "/usr/share/assimp/models/glTF2";
+
+Image8 renderScene(const std::filesystem::path& dir, const std::string& name, const std::string& scene,
+                   const std::string& extra = "") {
+  return renderOk(dir, name, scene + " --primary raster --frames 8 --seed 1 " + extra, kW, kH);
+}
+
+TEST(Scenes, WhittedMatchesGolden) {
+  auto dir = testDir();
+  expectMatchesGolden(renderScene(dir, "whitted", "builtin:whitted"), "whitted-160x120", dir);
+}
+
+TEST(Scenes, SpheresMatchesGolden) {
+  auto dir = testDir();
+  expectMatchesGolden(renderScene(dir, "spheres", "builtin:spheres"), "spheres-160x120", dir);
+}
+
+TEST(Scenes, SpheresImpostorAgreesWithIntersectionShader) {
+  // Raster impostors and the intersection shader solve the same quadric for the same rays.
+  auto dir = testDir();
+  Image8 raster = renderOk(dir, "raster", "builtin:spheres --primary raster --frames 4 --seed 2", kW, kH);
+  Image8 traced = renderOk(dir, "traced", "builtin:spheres --primary rt --frames 4 --seed 2", kW, kH);
+  ImageDiff diff = compare(raster, traced, 2);
+  if (diff.fractionWithinTolerance < 0.99) (void)writePng(dir / "diff.png", diff.heatmap);
+  EXPECT_GE(diff.fractionWithinTolerance, 0.99) << "max diff " << diff.maxChannelDiff;
+}
+
+TEST(Scenes, InstancesRenders) {
+  auto dir = testDir();
+  renderScene(dir, "instances", "builtin:instances:16");
+}
+
+TEST(Scenes, BoxTexturedMatchesGolden) {
+  auto file = kAssimpGltf2 / "BoxTextured-glTF" / "BoxTextured.gltf";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  auto dir = testDir();
+  expectMatchesGolden(renderScene(dir, "box", file.string()), "box-textured-160x120", dir);
+}
+
+TEST(Scenes, TextureTransformMatchesGolden) {
+  auto file = kAssimpGltf2 / "textureTransform" / "TextureTransformTest.gltf";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  auto dir = testDir();
+  expectMatchesGolden(renderScene(dir, "transform", file.string()), "texture-transform-160x120", dir);
+}
+
+TEST(Scenes, AlphaMaskCutsHolesAndShadows) {
+  auto dir = testDir();
+  auto file = writeAlphaMaskGltf(dir);
+  Image8 img = renderScene(dir, "alpha", file.string());
+  expectMatchesGolden(img, "alpha-mask-160x120", dir);
+}
+
+TEST(Scenes, AlphaMaskRasterAgreesWithAnyHit) {
+  // discard in the raster G-buffer and ignoreIntersection in the any-hit shader cut the same holes.
+  auto dir = testDir();
+  auto file = writeAlphaMaskGltf(dir).string();
+  Image8 raster = renderOk(dir, "raster", file + " --primary raster --frames 4 --seed 2", kW, kH);
+  Image8 traced = renderOk(dir, "traced", file + " --primary rt --frames 4 --seed 2", kW, kH);
+  ImageDiff diff = compare(raster, traced, 2);
+  if (diff.fractionWithinTolerance < 0.99) (void)writePng(dir / "diff.png", diff.heatmap);
+  EXPECT_GE(diff.fractionWithinTolerance, 0.99) << "max diff " << diff.maxChannelDiff;
+}
+
+TEST(Scenes, SceneFileWithHdrEnvironmentMatchesGolden) {
+  auto dir = testDir();
+  auto file = writeEnvironmentSceneFile(dir);
+  Image8 img = renderScene(dir, "env", file.string(), "--camera wide");
+  expectMatchesGolden(img, "scene-file-env-160x120", dir);
+  // The sky above the horizon is brighter and bluer than black: the map is really sampled.
+  const uint8_t* sky = img.pixel(kW / 2, 2);
+  EXPECT_GT(sky[2], 60) << "sky pixel should show the environment map";
+}
+
+} // namespace
+} // namespace rayster::test
