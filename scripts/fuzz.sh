@@ -19,6 +19,6 @@ for t in "${targets[@]}"; do
   mkdir -p "$corpus" "$scratch"
   echo "fuzz: $t for ${seconds}s on $corpus"
   # -rss_limit_mb bounds memory; a crash, leak, timeout or sanitizer report fails the run.
-  build-fuzz/"$t" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
+  build-fuzz/fuzz/"$t" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
     "$scratch" "$corpus" 2>&1 | tail -n 12
 done

@@ -1,0 +1,80 @@
+#include "scene/merge.h"
+
+#include <cmath>
+#include <utility>
+
+namespace rayster::scene {
+namespace {
+
+uint32_t rebase(uint32_t index, size_t base) { return index + static_cast<uint32_t>(base); }
+
+void rebase(TextureRef& ref, size_t textureBase) {
+  if (ref.valid()) ref.texture += static_cast<int32_t>(textureBase);
+}
+
+glm::vec3 transformPoint(const glm::mat4& m, glm::vec3 p) { return glm::vec3(m * glm::vec4(p, 1.0f)); }
+
+// Directions of travel and up vectors are vectors, not normals: the linear part moves them.
+glm::vec3 transformDirection(const glm::mat4& m, glm::vec3 d) {
+  const glm::vec3 moved = glm::mat3(m) * d;
+  const float len = glm::length(moved);
+  return len > 0.0f && std::isfinite(len) ? moved / len : d;
+}
+
+} // namespace
+
+void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
+  const size_t meshBase = dst.meshes.size(), materialBase = dst.materials.size(), imageBase = dst.images.size(),
+               samplerBase = dst.samplers.size(), textureBase = dst.textures.size();
+
+  for (Mesh& mesh : src.meshes) {
+    for (Primitive& prim : mesh.primitives) prim.material = rebase(prim.material, materialBase);
+    for (Sphere& sphere : mesh.spheres) sphere.material = rebase(sphere.material, materialBase);
+    dst.meshes.push_back(std::move(mesh));
+  }
+  for (Material& m : src.materials) {
+    for (TextureRef* ref : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
+                            &m.emissiveTexture})
+      rebase(*ref, textureBase);
+    dst.materials.push_back(std::move(m));
+  }
+  for (ImageData& image : src.images) dst.images.push_back(std::move(image));
+  for (Sampler& sampler : src.samplers) dst.samplers.push_back(sampler);
+  for (Texture& texture : src.textures)
+    dst.textures.push_back({rebase(texture.image, imageBase), rebase(texture.sampler, samplerBase)});
+
+  for (Instance& instance : src.instances) {
+    instance.mesh = rebase(instance.mesh, meshBase);
+    instance.worldFromObject = transform * instance.worldFromObject;
+    dst.instances.push_back(std::move(instance));
+  }
+
+  // A sphere light keeps its look relative to the model it lights: scale its radius like the model.
+  const float meanScale = std::cbrt(std::abs(glm::determinant(glm::mat3(transform))));
+  for (Light& light : src.lights) {
+    light.position = transformPoint(transform, light.position);
+    light.direction = transformDirection(transform, light.direction);
+    if (std::isfinite(meanScale)) light.radius *= meanScale;
+    dst.lights.push_back(std::move(light));
+  }
+  for (Camera& camera : src.cameras) {
+    camera.position = transformPoint(transform, camera.position);
+    camera.target = transformPoint(transform, camera.target);
+    camera.up = transformDirection(transform, camera.up);
+    dst.cameras.push_back(std::move(camera));
+  }
+
+  // Two camera paths or environments cannot be blended; the first one given wins.
+  if (dst.cameraPath.empty()) {
+    for (CameraKey& key : src.cameraPath) {
+      key.position = transformPoint(transform, key.position);
+      key.target = transformPoint(transform, key.target);
+    }
+    dst.cameraPath = std::move(src.cameraPath);
+  }
+  if (dst.environment.kind == Environment::Kind::Black) dst.environment = std::move(src.environment);
+  if (dst.ambient == glm::vec3(0.0f)) dst.ambient = src.ambient;
+  if (dst.name.empty()) dst.name = std::move(src.name);
+}
+
+} // namespace rayster::scene
