@@ -1,0 +1,77 @@
+#pragma once
+// Shared by the glTF loader's files (gltf_*.cpp); not part of the scene API. Include only from
+// those files: it pulls in tiny_gltf.h.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "core/error.h"
+#include "scene/scene.h"
+
+namespace rayster::scene::gltf {
+
+// Every glTF failure is BadInput with the file name first: "box.gltf: <cause>".
+template <class... A>
+Error bad(const std::string& file, fmt::format_string<A...> f, A&&... args) {
+  return Error{ExitCode::BadInput, fmt::format("{}: {}", file, fmt::format(f, std::forward<A>(args)...))};
+}
+
+// Error text from tinygltf or nlohmann can span lines; our messages must not.
+std::string oneLine(std::string_view text);
+
+// ---- gltf_document.cpp: vetting the raw file before tinygltf parses it ----
+
+// Checks the GLB container (header, chunk lengths and alignment) more strictly than tinygltf 2.7
+// does (it lets the BIN chunk run 8 bytes past the end) and returns the JSON chunk.
+Result<std::string_view> glbJsonChunk(const std::string& file, const std::vector<uint8_t>& bytes);
+
+// Parses the JSON on its own first so that nothing tinygltf does can be steered by the file:
+// bounded nesting (tinygltf converts extras recursively), URIs confined to the folder, data URIs
+// with valid base64, image buffer views inside their buffers, and extensionsRequired supported.
+Status vetJson(const std::string& file, std::string_view json);
+
+// A second line of defence behind vetJson: tinygltf's file access, confined to baseDir. Paths
+// outside it are refused and remembered in `violation`.
+struct ConfinedFs {
+  std::string baseDir; // absolute, no trailing slash
+  std::string violation;
+};
+tinygltf::FsCallbacks makeConfinedFsCallbacks(ConfinedFs* fs);
+
+// tinygltf image loader: refuses absurd dimensions before decoding, decodes to RGBA8.
+struct ImageDecodeState {
+  std::string error; // the first failure, without the file name
+};
+bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::string* warn, int reqWidth,
+                 int reqHeight, const unsigned char* bytes, int size, void* user);
+
+// ---- gltf_accessor.cpp: bounds-checked accessor reads ----
+
+Result<std::vector<glm::vec2>> readVec2(const tinygltf::Model& model, int accessor, const std::string& file);
+Result<std::vector<glm::vec3>> readVec3(const tinygltf::Model& model, int accessor, const std::string& file);
+Result<std::vector<glm::vec4>> readVec4(const tinygltf::Model& model, int accessor, const std::string& file);
+Result<std::vector<uint32_t>> readIndices(const tinygltf::Model& model, int accessor, const std::string& file);
+
+// ---- gltf_meshes.cpp ----
+
+struct MeshBuilder {
+  const tinygltf::Model& model;
+  const std::string& file;
+  Scene& scene;
+  std::optional<uint32_t> defaultMaterial; // appended on first use
+};
+Result<Mesh> convertMesh(MeshBuilder& builder, int meshIndex);
+
+// ---- gltf_materials.cpp: images, samplers, textures and materials, in glTF order ----
+
+Status convertMaterials(const tinygltf::Model& model, const std::string& file, Scene& scene);
+
+// A number from a tinygltf Value (extras, extensions), or `fallback` when absent or not a number.
+double numberOr(const tinygltf::Value& object, const char* key, double fallback);
+
+} // namespace rayster::scene::gltf

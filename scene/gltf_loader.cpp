@@ -1,0 +1,292 @@
+// glTF 2.0 loading: the file, tinygltf, and the node hierarchy (instances, cameras, lights).
+// Accessors, meshes, materials and the pre-parse checks live in the other gltf_*.cpp files.
+#include "scene/gltf_loader.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/log.h"
+#include "scene/gltf_internal.h"
+
+namespace fs = std::filesystem;
+
+namespace rayster::scene {
+namespace gltf {
+namespace {
+
+// tinygltf takes lengths as unsigned int; nothing near this size is a sensible scene file anyway.
+constexpr uint64_t kMaxFileBytes = 0x7fffffffu;
+
+bool finite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+Result<std::vector<uint8_t>> readFile(const fs::path& path, const std::string& file) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return bad(file, "cannot open {}: no such file", path.string());
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return bad(file, "cannot open {}: {}", path.string(), std::strerror(errno));
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0) return bad(file, "cannot read {}", path.string());
+  if (uint64_t(size) > kMaxFileBytes) return bad(file, "file is too large ({} bytes)", size);
+  in.seekg(0);
+  std::vector<uint8_t> bytes(static_cast<size_t>(size));
+  if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size))
+    return bad(file, "cannot read {}", path.string());
+  return bytes;
+}
+
+// The length from a GLB header that glbJsonChunk() accepted (at most the file's size).
+unsigned glbLength(const std::vector<uint8_t>& bytes) {
+  uint32_t length;
+  std::memcpy(&length, bytes.data() + 8, 4);
+  return length;
+}
+
+Result<tinygltf::Model> parse(const fs::path& path, const std::string& file) {
+  Result<std::vector<uint8_t>> bytes = readFile(path, file);
+  if (!bytes) return bytes.error();
+  const bool binary = bytes->size() >= 4 && std::memcmp(bytes->data(), "glTF", 4) == 0;
+  std::string_view json(reinterpret_cast<const char*>(bytes->data()), bytes->size());
+  if (binary) {
+    Result<std::string_view> chunk = glbJsonChunk(file, *bytes);
+    if (!chunk) return chunk.error();
+    json = *chunk;
+  }
+  RAYSTER_TRY(vetJson(file, json));
+
+  std::error_code ec;
+  fs::path dir = fs::absolute(path, ec).parent_path();
+  ConfinedFs confined{dir.string(), {}};
+  ImageDecodeState images;
+  tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks(makeConfinedFsCallbacks(&confined));
+  loader.SetImageLoader(&decodeImage, &images);
+  tinygltf::Model model;
+  std::string err, warn;
+  bool ok = false;
+  try {
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes->data(), glbLength(*bytes),
+                                              confined.baseDir)
+                : loader.LoadASCIIFromString(&model, &err, &warn, json.data(), unsigned(json.size()),
+                                             confined.baseDir);
+  } catch (const std::exception& e) {
+    return bad(file, "invalid glTF: {}", oneLine(e.what()));
+  }
+  if (!confined.violation.empty()) return bad(file, "{}", confined.violation);
+  if (!ok) {
+    if (!images.error.empty()) return bad(file, "{}", images.error);
+    return bad(file, "invalid glTF: {}", oneLine(err.empty() ? std::string("tinygltf failed") : err));
+  }
+  if (!warn.empty()) log::debug("{}: tinygltf: {}", file, oneLine(warn));
+  return model;
+}
+
+Result<glm::mat4> localTransform(const tinygltf::Node& node, size_t index, const std::string& file) {
+  glm::mat4 m(1.0f);
+  if (node.matrix.size() == 16) {
+    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = float(node.matrix[size_t(i)]); // column-major, as glm
+  } else {
+    glm::vec3 t(0.0f), s(1.0f);
+    glm::quat r(1.0f, 0.0f, 0.0f, 0.0f);
+    if (node.translation.size() == 3) t = glm::vec3(node.translation[0], node.translation[1], node.translation[2]);
+    if (node.scale.size() == 3) s = glm::vec3(node.scale[0], node.scale[1], node.scale[2]);
+    if (node.rotation.size() == 4) { // glTF stores x, y, z, w
+      r = glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2]));
+      const float length = glm::length(r);
+      if (length > 0.0f && std::isfinite(length)) r /= length; // exporters round; a skewing matrix helps no one
+    }
+    m = glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(r) * glm::scale(glm::mat4(1.0f), s);
+  }
+  if (!finite(m)) return bad(file, "node {} has a non-finite transform", index);
+  return m;
+}
+
+Status addCamera(const tinygltf::Model& model, const tinygltf::Node& node, const glm::mat4& world, Scene& scene,
+                 const std::string& file) {
+  if (size_t(node.camera) >= model.cameras.size())
+    return bad(file, "node '{}' uses camera {}, which does not exist", node.name, node.camera);
+  const tinygltf::Camera& src = model.cameras[size_t(node.camera)];
+  Camera camera;
+  camera.name = !node.name.empty() ? node.name : !src.name.empty() ? src.name : fmt::format("camera{}", node.camera);
+  // A glTF camera looks down its local -Z with +Y up.
+  const glm::vec3 forward = glm::mat3(world) * glm::vec3(0, 0, -1);
+  const glm::vec3 up = glm::mat3(world) * glm::vec3(0, 1, 0);
+  if (!(glm::length(forward) > 0.0f) || !(glm::length(up) > 0.0f))
+    return bad(file, "camera '{}' has a degenerate transform", camera.name);
+  camera.position = glm::vec3(world[3]);
+  camera.target = camera.position + glm::normalize(forward);
+  camera.up = glm::normalize(up);
+  double znear = 0.0, zfar = 0.0;
+  if (src.type == "orthographic") {
+    log::warn("{}: camera '{}' is orthographic; Rayster renders it as a perspective camera", file, camera.name);
+    znear = src.orthographic.znear;
+    zfar = src.orthographic.zfar;
+  } else {
+    const float yFov = float(src.perspective.yfov);
+    if (yFov > 0.0f && yFov < 3.1f) camera.yFov = yFov;
+    znear = src.perspective.znear;
+    zfar = src.perspective.zfar;
+  }
+  if (znear > 0.0 && std::isfinite(float(znear))) camera.zNear = float(znear);
+  // zfar absent means an infinite projection; a far plane well past the near one stands in for it.
+  camera.zFar = zfar > znear && std::isfinite(float(zfar)) ? float(zfar) : std::max(camera.zFar, camera.zNear * 1e4f);
+  scene.cameras.push_back(camera);
+  return okStatus();
+}
+
+// KHR_lights_punctual gives point/spot intensity in candela (lm/sr) and directional in lux
+// (lm/m^2). Rayster's lights are radiometric (W/sr-like intensity, irradiance), and the numbers
+// are passed through unconverted: scenes tuned in other glTF viewers keep their relative balance,
+// and no 683 lm/W factor makes exposure differ between a glTF and the same scene file.
+Status addLight(const tinygltf::Model& model, const tinygltf::Node& node, int lightIndex, const glm::mat4& world,
+                Scene& scene, const std::string& file) {
+  if (lightIndex < 0 || size_t(lightIndex) >= model.lights.size())
+    return bad(file, "node '{}' uses light {}, which does not exist", node.name, lightIndex);
+  const tinygltf::Light& src = model.lights[size_t(lightIndex)];
+  Light light;
+  light.name = !node.name.empty() ? node.name : !src.name.empty() ? src.name : fmt::format("light{}", lightIndex);
+  if (src.type == "point") light.type = LightType::Point;
+  else if (src.type == "spot") light.type = LightType::Spot;
+  else if (src.type == "directional") light.type = LightType::Directional;
+  else return bad(file, "light '{}' has unknown type '{}'", light.name, src.type);
+  if (src.color.size() == 3) light.color = glm::vec3(src.color[0], src.color[1], src.color[2]);
+  light.intensity = float(src.intensity);
+  light.position = glm::vec3(world[3]);
+  const glm::vec3 direction = glm::mat3(world) * glm::vec3(0, 0, -1); // lights shine down local -Z
+  if (!(glm::length(direction) > 0.0f)) return bad(file, "light '{}' has a degenerate transform", light.name);
+  light.direction = glm::normalize(direction);
+  if (light.type == LightType::Spot) {
+    light.innerConeAngle = float(src.spot.innerConeAngle);
+    light.outerConeAngle = float(src.spot.outerConeAngle);
+  }
+  // Soft-shadow sizes are not in KHR_lights_punctual; Rayster reads them from extras.
+  light.radius = std::max(0.0f, float(numberOr(src.extras, "radius", 0.0)));
+  light.angularRadius = std::max(0.0f, float(numberOr(src.extras, "angularRadius", 0.0)));
+  if (!std::isfinite(light.intensity) || !std::isfinite(light.radius) || !std::isfinite(light.angularRadius) ||
+      !std::isfinite(light.color.x + light.color.y + light.color.z))
+    return bad(file, "light '{}' has a non-finite parameter", light.name);
+  scene.lights.push_back(light);
+  return okStatus();
+}
+
+int nodeLight(const tinygltf::Node& node) {
+  auto it = node.extensions.find("KHR_lights_punctual");
+  if (it == node.extensions.end()) return -1;
+  const double index = numberOr(it->second, "light", -1.0);
+  return index >= 0.0 && index < 2147483647.0 ? int(index) : -2; // -2: present but invalid
+}
+
+// The scene's root nodes, after checking that the hierarchy is a forest: children exist, and no
+// node has two parents.
+Result<std::vector<int>> rootNodes(const tinygltf::Model& model, const std::string& file) {
+  std::vector<int> parent(model.nodes.size(), -1);
+  for (size_t i = 0; i < model.nodes.size(); ++i)
+    for (int child : model.nodes[i].children) {
+      if (child < 0 || size_t(child) >= model.nodes.size())
+        return bad(file, "node {} has child {}, which does not exist", i, child);
+      if (parent[size_t(child)] >= 0)
+        return bad(file, "node {} has two parents ({} and {}), or the hierarchy has a cycle", child,
+                   parent[size_t(child)], i);
+      parent[size_t(child)] = int(i);
+    }
+  std::vector<int> roots;
+  if (!model.scenes.empty()) {
+    const size_t s = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size()
+                         ? size_t(model.defaultScene)
+                         : 0;
+    for (int n : model.scenes[s].nodes) {
+      if (n < 0 || size_t(n) >= model.nodes.size()) return bad(file, "scene {} uses node {}, which does not exist", s, n);
+      roots.push_back(n);
+    }
+  } else {
+    for (size_t i = 0; i < model.nodes.size(); ++i)
+      if (parent[i] < 0) roots.push_back(int(i));
+  }
+  return roots;
+}
+
+Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene& scene) {
+  Result<std::vector<int>> roots = rootNodes(model, file);
+  if (!roots) return roots.error();
+  MeshBuilder meshes{model, file, scene, std::nullopt};
+  std::vector<int> meshMap(model.meshes.size(), -1);
+  std::vector<bool> visited(model.nodes.size(), false);
+  bool warnedSkin = false;
+  // Explicit stack: hierarchies can be deep, and a hostile file must not overflow ours.
+  std::vector<std::pair<int, glm::mat4>> stack;
+  for (auto it = roots->rbegin(); it != roots->rend(); ++it) stack.emplace_back(*it, glm::mat4(1.0f));
+  while (!stack.empty()) {
+    auto [index, parentWorld] = stack.back();
+    stack.pop_back();
+    if (visited[size_t(index)]) return bad(file, "node {} is reached twice: the node hierarchy has a cycle", index);
+    visited[size_t(index)] = true;
+    const tinygltf::Node& node = model.nodes[size_t(index)];
+    Result<glm::mat4> local = localTransform(node, size_t(index), file);
+    if (!local) return local.error();
+    const glm::mat4 world = parentWorld * *local;
+    if (!finite(world)) return bad(file, "node {} has a non-finite world transform", index);
+
+    if (node.mesh >= 0) {
+      if (size_t(node.mesh) >= model.meshes.size())
+        return bad(file, "node {} uses mesh {}, which does not exist", index, node.mesh);
+      if (meshMap[size_t(node.mesh)] < 0) {
+        Result<Mesh> mesh = convertMesh(meshes, node.mesh);
+        if (!mesh) return mesh.error();
+        meshMap[size_t(node.mesh)] = int(scene.meshes.size());
+        scene.meshes.push_back(std::move(*mesh));
+      }
+      if (node.skin >= 0 && !warnedSkin) {
+        log::warn("{}: skins are not supported; skinned meshes are drawn in their bind pose", file);
+        warnedSkin = true;
+      }
+      const uint32_t meshIndex = uint32_t(meshMap[size_t(node.mesh)]);
+      if (!scene.meshes[meshIndex].primitives.empty()) {
+        Instance instance;
+        instance.name = node.name.empty() ? fmt::format("node{}", index) : node.name;
+        instance.mesh = meshIndex;
+        instance.worldFromObject = world;
+        scene.instances.push_back(instance);
+      }
+    }
+    if (node.camera >= 0) RAYSTER_TRY(addCamera(model, node, world, scene, file));
+    if (int light = nodeLight(node); light != -1) RAYSTER_TRY(addLight(model, node, light, world, scene, file));
+    for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
+      stack.emplace_back(*child, world);
+  }
+  return okStatus();
+}
+
+} // namespace
+} // namespace gltf
+
+Result<Scene> loadGltf(const fs::path& path) {
+  const std::string file = path.filename().string();
+  Result<tinygltf::Model> model = gltf::parse(path, file);
+  if (!model) return model.error();
+  Scene scene;
+  scene.name = path.stem().string();
+  RAYSTER_TRY(gltf::convertMaterials(*model, file, scene));
+  RAYSTER_TRY(gltf::convertNodes(*model, file, scene));
+
+  // validate() insists on a camera, but a camera-less file is fine here: applyDefaults() frames
+  // one later. Check everything else with a stand-in that is removed again.
+  const bool standIn = scene.cameras.empty();
+  if (standIn) scene.cameras.push_back(Camera{});
+  Status valid = validate(scene);
+  if (standIn) scene.cameras.pop_back();
+  if (!valid) return valid.error();
+  return scene;
+}
+
+} // namespace rayster::scene

@@ -1,0 +1,241 @@
+// glTF images, samplers, textures and materials -> scene::ImageData, Sampler, Texture, Material.
+#include <cfloat>
+#include <cmath>
+
+#include <stb/stb_image.h> // declarations only: the implementation lives in core/image_io.cpp
+
+#include "core/log.h"
+#include "scene/gltf_internal.h"
+
+namespace rayster::scene::gltf {
+namespace {
+
+// Textures beyond these are refused before decoding: larger ones are either hostile headers that
+// would make stb_image allocate gigabytes, or more than any GPU texture limit allows.
+constexpr int kMaxImageSide = 16384;
+constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;
+
+float finiteOr(double value, float fallback) {
+  const float f = float(value);
+  return std::isfinite(f) ? f : fallback;
+}
+
+template <int N>
+glm::vec<N, float> vectorOr(const std::vector<double>& values, glm::vec<N, float> fallback) {
+  if (values.size() != size_t(N)) return fallback;
+  glm::vec<N, float> v;
+  for (int i = 0; i < N; ++i) v[i] = finiteOr(values[size_t(i)], fallback[i]);
+  return v;
+}
+
+template <int N>
+glm::vec<N, float> valueVectorOr(const tinygltf::Value& object, const char* key, glm::vec<N, float> fallback) {
+  if (!object.IsObject() || !object.Has(key)) return fallback;
+  const tinygltf::Value& array = object.Get(key);
+  if (!array.IsArray() || array.ArrayLen() != size_t(N)) return fallback;
+  glm::vec<N, float> v;
+  for (int i = 0; i < N; ++i) {
+    const tinygltf::Value& e = array.Get(i);
+    v[i] = e.IsNumber() ? finiteOr(e.GetNumberAsDouble(), fallback[i]) : fallback[i];
+  }
+  return v;
+}
+
+const tinygltf::Value* extension(const tinygltf::ExtensionMap& extensions, const char* name) {
+  auto it = extensions.find(name);
+  return it != extensions.end() && it->second.IsObject() ? &it->second : nullptr;
+}
+
+Sampler convertSampler(const tinygltf::Sampler& src) {
+  auto wrap = [](int mode) {
+    switch (mode) {
+      case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::ClampToEdge;
+      case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::MirroredRepeat;
+      default: return Wrap::Repeat;
+    }
+  };
+  Sampler s;
+  s.wrapS = wrap(src.wrapS);
+  s.wrapT = wrap(src.wrapT);
+  s.magFilter = src.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::Nearest : Filter::Linear;
+  const int min = src.minFilter;
+  s.minFilter = (min == TINYGLTF_TEXTURE_FILTER_NEAREST || min == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+                 min == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR)
+                    ? Filter::Nearest
+                    : Filter::Linear;
+  // An unset minFilter leaves the choice to us, and mipmaps are what a renderer wants by default.
+  s.mipmaps = min == -1 || (min != TINYGLTF_TEXTURE_FILTER_NEAREST && min != TINYGLTF_TEXTURE_FILTER_LINEAR);
+  return s;
+}
+
+// `textureMap` maps glTF texture indices to scene textures (-1 where unusable).
+struct MaterialContext {
+  const tinygltf::Model& model;
+  const std::string& file;
+  const std::vector<int32_t>& textureMap;
+};
+
+TextureRef textureRef(const MaterialContext& ctx, int index, int texCoord, const tinygltf::ExtensionMap& extensions,
+                      const std::string& material) {
+  TextureRef ref;
+  if (index < 0) return ref;
+  if (size_t(index) >= ctx.textureMap.size()) {
+    log::warn("{}: material '{}' uses texture {}, which does not exist; ignored", ctx.file, material, index);
+    return ref;
+  }
+  ref.texture = ctx.textureMap[size_t(index)];
+  int uvSet = texCoord;
+  if (const tinygltf::Value* t = extension(extensions, "KHR_texture_transform")) {
+    ref.offset = valueVectorOr<2>(*t, "offset", glm::vec2(0.0f));
+    ref.scale = valueVectorOr<2>(*t, "scale", glm::vec2(1.0f));
+    ref.rotation = finiteOr(numberOr(*t, "rotation", 0.0), 0.0f);
+    if (t->Has("texCoord")) uvSet = int(numberOr(*t, "texCoord", texCoord)); // the extension overrides
+  }
+  if (uvSet < 0 || uvSet > 1) {
+    log::warn("{}: material '{}' uses UV set {}; Rayster reads sets 0 and 1, using 0", ctx.file, material, uvSet);
+    uvSet = 0;
+  }
+  ref.texCoord = uint32_t(uvSet);
+  return ref;
+}
+
+Material convertMaterial(const MaterialContext& ctx, const tinygltf::Material& src, size_t index) {
+  Material m;
+  m.name = src.name.empty() ? fmt::format("material{}", index) : src.name;
+  const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
+  m.baseColor = vectorOr<4>(pbr.baseColorFactor, glm::vec4(1.0f));
+  m.metallic = glm::clamp(finiteOr(pbr.metallicFactor, 1.0f), 0.0f, 1.0f);
+  m.roughness = glm::clamp(finiteOr(pbr.roughnessFactor, 1.0f), 0.0f, 1.0f);
+  m.baseColorTexture = textureRef(ctx, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                  pbr.baseColorTexture.extensions, m.name);
+  m.metallicRoughnessTexture = textureRef(ctx, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                                          pbr.metallicRoughnessTexture.extensions, m.name);
+  m.normalTexture =
+      textureRef(ctx, src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions, m.name);
+  m.normalScale = finiteOr(src.normalTexture.scale, 1.0f);
+  m.occlusionTexture =
+      textureRef(ctx, src.occlusionTexture.index, src.occlusionTexture.texCoord, src.occlusionTexture.extensions, m.name);
+  m.occlusionStrength = glm::clamp(finiteOr(src.occlusionTexture.strength, 1.0f), 0.0f, 1.0f);
+  m.emissiveTexture =
+      textureRef(ctx, src.emissiveTexture.index, src.emissiveTexture.texCoord, src.emissiveTexture.extensions, m.name);
+  m.emissive = vectorOr<3>(src.emissiveFactor, glm::vec3(0.0f));
+  if (const tinygltf::Value* e = extension(src.extensions, "KHR_materials_emissive_strength"))
+    m.emissive *= finiteOr(numberOr(*e, "emissiveStrength", 1.0), 1.0f);
+  m.doubleSided = src.doubleSided;
+  if (src.alphaMode == "MASK") m.alphaMode = AlphaMode::Mask;
+  else if (src.alphaMode == "BLEND") m.alphaMode = AlphaMode::Blend;
+  m.alphaCutoff = finiteOr(src.alphaCutoff, 0.5f);
+
+  if (const tinygltf::Value* e = extension(src.extensions, "KHR_materials_transmission"))
+    m.transmission = glm::clamp(finiteOr(numberOr(*e, "transmissionFactor", 0.0), 0.0f), 0.0f, 1.0f);
+  if (const tinygltf::Value* e = extension(src.extensions, "KHR_materials_ior"))
+    m.ior = finiteOr(numberOr(*e, "ior", 1.5), 1.5f);
+  if (const tinygltf::Value* e = extension(src.extensions, "KHR_materials_volume")) {
+    m.thickness = std::max(finiteOr(numberOr(*e, "thicknessFactor", 0.0), 0.0f), 0.0f);
+    m.attenuationColor = valueVectorOr<3>(*e, "attenuationColor", glm::vec3(1.0f));
+    // Absent means infinite, i.e. no absorption; +inf from a huge number means the same.
+    const double distance = numberOr(*e, "attenuationDistance", DBL_MAX);
+    m.attenuationDistance = distance > 0.0 && distance < FLT_MAX ? float(distance) : FLT_MAX;
+  }
+  if (const tinygltf::Value* e = extension(src.extensions, "KHR_materials_specular")) {
+    m.specular = finiteOr(numberOr(*e, "specularFactor", 1.0), 1.0f);
+    m.specularColor = valueVectorOr<3>(*e, "specularColorFactor", glm::vec3(1.0f));
+  }
+  return m;
+}
+
+Result<ImageData> convertImage(const tinygltf::Image& src, size_t index, const std::string& file) {
+  ImageData img;
+  img.name = !src.name.empty() ? src.name : !src.uri.empty() ? src.uri : fmt::format("image{}", index);
+  if (src.image.empty()) {
+    // tinygltf only warns when an external image is missing; for us it is a broken file.
+    if (!src.uri.empty()) return bad(file, "image {} '{}' is missing or unreadable", index, src.uri);
+    return bad(file, "image {} has no data", index);
+  }
+  // decodeImage produced RGBA8, but a file could still arrive here through another path: check.
+  if (src.width <= 0 || src.height <= 0 || src.component != 4 || src.bits != 8 ||
+      src.image.size() != size_t(src.width) * size_t(src.height) * 4)
+    return bad(file, "image {} '{}' has inconsistent pixel data", index, img.name);
+  img.width = src.width;
+  img.height = src.height;
+  img.rgba = src.image;
+  return img;
+}
+
+} // namespace
+
+double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
+  if (!object.IsObject() || !object.Has(key)) return fallback;
+  const tinygltf::Value& v = object.Get(key);
+  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::string*, int, int,
+                 const unsigned char* bytes, int size, void* user) {
+  auto* state = static_cast<ImageDecodeState*>(user);
+  auto fail = [&](std::string message) {
+    if (state->error.empty()) state->error = message;
+    if (err) *err += message + "\n";
+    return false;
+  };
+  int width = 0, height = 0, channels = 0;
+  if (!bytes || size <= 0 || !stbi_info_from_memory(bytes, size, &width, &height, &channels))
+    return fail(fmt::format("image {} cannot be decoded ({})", imageIndex,
+                            stbi_failure_reason() ? stbi_failure_reason() : "not PNG or JPEG"));
+  if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide ||
+      uint64_t(width) * uint64_t(height) > kMaxImagePixels)
+    return fail(fmt::format("image {} is {}x{}, larger than Rayster accepts ({} per side)", imageIndex, width, height,
+                            kMaxImageSide));
+  stbi_uc* pixels = stbi_load_from_memory(bytes, size, &width, &height, &channels, 4);
+  if (!pixels)
+    return fail(fmt::format("image {} cannot be decoded ({})", imageIndex,
+                            stbi_failure_reason() ? stbi_failure_reason() : "unknown error"));
+  image->width = width;
+  image->height = height;
+  image->component = 4;
+  image->bits = 8;
+  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  image->image.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
+  stbi_image_free(pixels);
+  return true;
+}
+
+Status convertMaterials(const tinygltf::Model& model, const std::string& file, Scene& scene) {
+  for (size_t i = 0; i < model.images.size(); ++i) {
+    Result<ImageData> img = convertImage(model.images[i], i, file);
+    if (!img) return img.error();
+    scene.images.push_back(std::move(*img));
+  }
+  for (const tinygltf::Sampler& s : model.samplers) scene.samplers.push_back(convertSampler(s));
+
+  std::optional<uint32_t> defaultSampler;
+  std::vector<int32_t> textureMap(model.textures.size(), -1);
+  for (size_t i = 0; i < model.textures.size(); ++i) {
+    const tinygltf::Texture& src = model.textures[i];
+    // A texture whose only source is an extension (KTX2, WebP) has no image we can read.
+    if (src.source < 0 || size_t(src.source) >= scene.images.size()) {
+      log::warn("{}: texture {} has no PNG or JPEG image; ignored", file, i);
+      continue;
+    }
+    Texture t;
+    t.image = uint32_t(src.source);
+    if (src.sampler >= 0 && size_t(src.sampler) < model.samplers.size()) {
+      t.sampler = uint32_t(src.sampler);
+    } else {
+      if (!defaultSampler) {
+        defaultSampler = uint32_t(scene.samplers.size());
+        scene.samplers.push_back(Sampler{});
+      }
+      t.sampler = *defaultSampler;
+    }
+    textureMap[i] = int32_t(scene.textures.size());
+    scene.textures.push_back(t);
+  }
+
+  const MaterialContext ctx{model, file, textureMap};
+  for (size_t i = 0; i < model.materials.size(); ++i)
+    scene.materials.push_back(convertMaterial(ctx, model.materials[i], i));
+  return okStatus();
+}
+
+} // namespace rayster::scene::gltf

@@ -1,0 +1,175 @@
+// glTF meshes -> scene::Mesh: triangle primitives, attributes, indices, generated flat normals.
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "core/log.h"
+#include "scene/gltf_internal.h"
+
+namespace rayster::scene::gltf {
+namespace {
+
+const char* modeName(int mode) {
+  switch (mode) {
+    case TINYGLTF_MODE_POINTS: return "POINTS";
+    case TINYGLTF_MODE_LINE: return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+    case TINYGLTF_MODE_TRIANGLES: return "TRIANGLES";
+    case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
+    case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
+    default: return "unknown";
+  }
+}
+
+int attribute(const tinygltf::Primitive& prim, const char* name) {
+  auto it = prim.attributes.find(name);
+  return it == prim.attributes.end() ? -1 : it->second;
+}
+
+// The glTF spec: "When normals are not specified, client implementations MUST calculate flat
+// normals". Flat means no vertex is shared between triangles, so the primitive is un-indexed
+// first (every triangle gets its own three vertices, with all their attributes).
+void generateFlatNormals(Primitive& prim) {
+  auto expand = [&](auto& attribute) {
+    if (attribute.empty()) return;
+    std::remove_reference_t<decltype(attribute)> out;
+    out.reserve(prim.indices.size());
+    for (uint32_t i : prim.indices) out.push_back(attribute[i]);
+    attribute = std::move(out);
+  };
+  expand(prim.positions);
+  expand(prim.tangents);
+  expand(prim.uvs);
+  expand(prim.uvs1);
+  for (size_t i = 0; i < prim.indices.size(); ++i) prim.indices[i] = uint32_t(i);
+  prim.normals.assign(prim.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
+  for (size_t t = 0; t + 2 < prim.positions.size(); t += 3) {
+    const glm::vec3 n =
+        glm::cross(prim.positions[t + 1] - prim.positions[t], prim.positions[t + 2] - prim.positions[t]);
+    const float length = glm::length(n);
+    // Degenerate triangles cover no pixels; any unit normal keeps the shaders finite.
+    const glm::vec3 normal = length > 0.0f && std::isfinite(length) ? n / length : glm::vec3(0.0f, 0.0f, 1.0f);
+    prim.normals[t] = prim.normals[t + 1] = prim.normals[t + 2] = normal;
+  }
+}
+
+uint32_t defaultMaterial(MeshBuilder& builder) {
+  if (!builder.defaultMaterial) {
+    Material material;
+    material.name = "default";
+    builder.defaultMaterial = uint32_t(builder.scene.materials.size());
+    builder.scene.materials.push_back(material);
+  }
+  return *builder.defaultMaterial;
+}
+
+// "mesh 'name'" or, for unnamed meshes, "mesh 3".
+std::string meshLabel(const tinygltf::Mesh& mesh, int index) {
+  return mesh.name.empty() ? fmt::format("mesh {}", index) : fmt::format("mesh '{}'", mesh.name);
+}
+
+Result<Primitive> convertPrimitive(MeshBuilder& builder, const tinygltf::Mesh& mesh, int meshIndex, size_t primIndex) {
+  const tinygltf::Primitive& src = mesh.primitives[primIndex];
+  const std::string& file = builder.file;
+  const tinygltf::Model& model = builder.model;
+  const std::string label = meshLabel(mesh, meshIndex);
+  // tinygltf reports an absent mode as -1 in some versions and 4 in others; both mean triangles.
+  if (src.mode != TINYGLTF_MODE_TRIANGLES && src.mode != -1)
+    return bad(file, "{} primitive {} uses mode {}, only triangles are supported", label, primIndex,
+               modeName(src.mode));
+  if (!src.targets.empty())
+    log::warn("{}: {} primitive {}: morph targets are ignored", file, label, primIndex);
+
+  Primitive prim;
+  const int position = attribute(src, "POSITION");
+  if (position < 0) return bad(file, "{} primitive {} has no POSITION attribute", label, primIndex);
+  auto positions = readVec3(model, position, file);
+  if (!positions) return positions.error();
+  prim.positions = std::move(*positions);
+  const size_t vertexCount = prim.positions.size();
+  if (vertexCount > UINT32_MAX)
+    return bad(file, "{} primitive {} has too many vertices", label, primIndex);
+
+  // Optional attributes must match POSITION's count; a mismatch is a broken file, not a detail.
+  auto checkCount = [&](size_t count, const char* what) -> Status {
+    if (count != vertexCount)
+      return bad(file, "{} primitive {}: {} has {} elements for {} positions", label, primIndex, what,
+                 count, vertexCount);
+    return okStatus();
+  };
+  if (int a = attribute(src, "NORMAL"); a >= 0) {
+    auto normals = readVec3(model, a, file);
+    if (!normals) return normals.error();
+    RAYSTER_TRY(checkCount(normals->size(), "NORMAL"));
+    prim.normals = std::move(*normals);
+  }
+  if (int a = attribute(src, "TANGENT"); a >= 0) {
+    auto tangents = readVec4(model, a, file);
+    if (!tangents) return tangents.error();
+    RAYSTER_TRY(checkCount(tangents->size(), "TANGENT"));
+    prim.tangents = std::move(*tangents);
+  }
+  if (int a = attribute(src, "TEXCOORD_0"); a >= 0) {
+    auto uvs = readVec2(model, a, file);
+    if (!uvs) return uvs.error();
+    RAYSTER_TRY(checkCount(uvs->size(), "TEXCOORD_0"));
+    prim.uvs = std::move(*uvs);
+  }
+  if (int a = attribute(src, "TEXCOORD_1"); a >= 0) {
+    auto uvs = readVec2(model, a, file);
+    if (!uvs) return uvs.error();
+    RAYSTER_TRY(checkCount(uvs->size(), "TEXCOORD_1"));
+    prim.uvs1 = std::move(*uvs);
+  }
+
+  if (src.indices >= 0) {
+    auto indices = readIndices(model, src.indices, file);
+    if (!indices) return indices.error();
+    prim.indices = std::move(*indices);
+    for (size_t i = 0; i < prim.indices.size(); ++i)
+      if (prim.indices[i] >= vertexCount)
+        return bad(file, "{} primitive {}: index {} is {}, past the vertex count {}", label, primIndex, i,
+                   prim.indices[i], vertexCount);
+  } else {
+    prim.indices.resize(vertexCount);
+    for (size_t i = 0; i < vertexCount; ++i) prim.indices[i] = uint32_t(i);
+  }
+  if (prim.indices.size() % 3 != 0)
+    return bad(file, "{} primitive {}: {} indices is not a whole number of triangles", label, primIndex,
+               prim.indices.size());
+  for (size_t i = 0; i < vertexCount; ++i)
+    if (!std::isfinite(prim.positions[i].x) || !std::isfinite(prim.positions[i].y) ||
+        !std::isfinite(prim.positions[i].z))
+      return bad(file, "{} primitive {}: position {} is not finite", label, primIndex, i);
+
+  if (prim.normals.empty()) generateFlatNormals(prim);
+
+  if (src.material >= 0) {
+    if (size_t(src.material) >= model.materials.size())
+      return bad(file, "{} primitive {} uses material {}, which does not exist", label, primIndex,
+                 src.material);
+    prim.material = uint32_t(src.material); // materials are converted in glTF order, so indices carry over
+  } else {
+    prim.material = defaultMaterial(builder);
+  }
+  return prim;
+}
+
+} // namespace
+
+Result<Mesh> convertMesh(MeshBuilder& builder, int meshIndex) {
+  const tinygltf::Mesh& src = builder.model.meshes[size_t(meshIndex)];
+  Mesh mesh;
+  mesh.name = src.name.empty() ? fmt::format("mesh{}", meshIndex) : src.name;
+  for (size_t p = 0; p < src.primitives.size(); ++p) {
+    Result<Primitive> prim = convertPrimitive(builder, src, meshIndex, p);
+    if (!prim) return prim.error();
+    // A primitive without triangles adds nothing to draw and would be an empty BLAS geometry.
+    if (prim->indices.empty()) continue;
+    mesh.primitives.push_back(std::move(*prim));
+  }
+  return mesh;
+}
+
+} // namespace rayster::scene::gltf

@@ -1,0 +1,204 @@
+// glTF files the loader must refuse: each with ExitCode::BadInput and a one-line message that says
+// why. Built from the same test quad as test_gltf.cpp, broken one way each.
+#include <gtest/gtest.h>
+
+#include "gltf_test_util.h"
+
+using namespace rayster;
+using namespace rayster::test;
+
+namespace {
+
+void expectRefused(const Result<scene::Scene>& result, const std::string& substring) {
+  ASSERT_FALSE(result.ok()) << "expected a refusal mentioning: " << substring;
+  EXPECT_EQ(result.error().code, ExitCode::BadInput);
+  EXPECT_NE(result.error().message.find(substring), std::string::npos) << result.error().message;
+  EXPECT_EQ(result.error().message.find('\n'), std::string::npos) << result.error().message;
+}
+
+// A PNG whose IHDR claims width x height, with no pixel data behind it.
+std::vector<uint8_t> pngHeader(uint32_t width, uint32_t height) {
+  std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A, 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
+  for (uint32_t v : {width, height})
+    for (int shift = 24; shift >= 0; shift -= 8) png.push_back(uint8_t(v >> shift));
+  // bit depth, RGBA, methods, CRC (unchecked by stb), then IEND.
+  png.insert(png.end(), {8, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82});
+  return png;
+}
+
+Result<scene::Scene> loadWithBufferUri(const std::string& uri) {
+  TempDir dir;
+  Doc d = quadDoc();
+  return loadBytes(dir, d.gltf(uri), "sub/quad.gltf");
+}
+
+TEST(GltfReject, MissingFile) {
+  TempDir dir;
+  expectRefused(scene::loadGltf(dir.path() / "nothing.gltf"), "nothing.gltf");
+}
+
+TEST(GltfReject, TruncatedJson) {
+  TempDir dir;
+  std::string json = quadDoc().gltf();
+  expectRefused(loadBytes(dir, json.substr(0, json.size() / 2)), "invalid JSON");
+}
+
+TEST(GltfReject, GarbageGlbLength) {
+  TempDir dir;
+  std::string glb = quadDoc().glb();
+  glb[8] = char(0xff); // the header's total length now exceeds the file
+  glb[9] = char(0xff);
+  expectRefused(loadBytes(dir, glb, "bad.glb"), "GLB header says");
+  std::string truncated = quadDoc().glb();
+  expectRefused(loadBytes(dir, truncated.substr(0, truncated.size() - 16), "short.glb"), "GLB");
+}
+
+TEST(GltfReject, DeeplyNestedJson) {
+  TempDir dir;
+  Doc d = quadDoc();
+  std::string json = d.gltf();
+  json.insert(json.size() - 1, ",\"extras\":" + std::string(10000, '[') + std::string(10000, ']'));
+  expectRefused(loadBytes(dir, json), "nests deeper");
+}
+
+TEST(GltfReject, AccessorOutOfBufferBounds) {
+  TempDir dir;
+  Doc d = quadDoc();
+  d.j["accessors"][0]["count"] = 5;
+  expectRefused(loadBytes(dir, d.gltf()), "accessor 0 reads past the end of buffer view 0");
+  Doc e = quadDoc();
+  e.j["bufferViews"][0]["byteLength"] = 4096;
+  expectRefused(loadBytes(dir, e.gltf()), "buffer view 0 reaches past the end of buffer 0");
+}
+
+TEST(GltfReject, AbsurdCount) {
+  TempDir dir;
+  Doc d = quadDoc();
+  d.j["accessors"][0]["count"] = uint64_t(1) << 62;
+  expectRefused(loadBytes(dir, d.gltf()), "reads past the end");
+  Doc e = quadDoc();
+  e.j["accessors"][0]["count"] = uint64_t(1) << 62;
+  e.j["accessors"][0].erase("bufferView");
+  expectRefused(loadBytes(dir, e.gltf()), "too large");
+}
+
+TEST(GltfReject, IndexPastVertexCount) {
+  TempDir dir;
+  Doc d = quadDoc();
+  primitive(d)["indices"] = d.accessor(d.view(std::vector<uint32_t>{0, 1, 4}), kUInt, 3, "SCALAR");
+  expectRefused(loadBytes(dir, d.gltf()), "past the vertex count");
+}
+
+TEST(GltfReject, SparseIndexPastCount) {
+  TempDir dir;
+  Doc d = quadDoc();
+  const int idxView = d.view(std::vector<uint16_t>{1, 9});
+  const int valView = d.view(std::vector<float>{5, 5, 5, 7, 7, 7});
+  d.j["accessors"][0]["sparse"] = {{"count", 2},
+                                   {"indices", {{"bufferView", idxView}, {"componentType", kUShort}}},
+                                   {"values", {{"bufferView", valView}}}};
+  expectRefused(loadBytes(dir, d.gltf()), "sparse index 1 is 9, past the count 4");
+}
+
+TEST(GltfReject, NonFiniteNodeMatrix) {
+  TempDir dir;
+  Doc d = quadDoc();
+  // JSON cannot spell NaN; 1e39 overflows a float to infinity, which is as bad.
+  d.node(0)["matrix"] = {1, 0, 0, 0, 0, 1e39, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  expectRefused(loadBytes(dir, d.gltf()), "non-finite transform");
+}
+
+TEST(GltfReject, NanPosition) {
+  TempDir dir;
+  Doc d = quadDoc();
+  primitive(d)["attributes"]["POSITION"] = d.floats({0, 0, 0, 1, 0, 0, NAN, 1, 0, 0, 1, 0}, "VEC3", 3);
+  expectRefused(loadBytes(dir, d.gltf()), "position 2 is not finite");
+}
+
+TEST(GltfReject, NodeCycle) {
+  TempDir dir;
+  Doc d = quadDoc();
+  d.j["nodes"] = Json::array({{{"mesh", 0}, {"children", {1}}}, {{"children", {0}}}});
+  expectRefused(loadBytes(dir, d.gltf()), "cycle");
+  Doc self = quadDoc();
+  self.node(0)["children"] = {0};
+  expectRefused(loadBytes(dir, self.gltf()), "cycle");
+  Doc twoParents = quadDoc();
+  twoParents.j["nodes"] = Json::array({{{"children", {2}}}, {{"children", {2}}}, {{"mesh", 0}}});
+  twoParents.j["scenes"][0]["nodes"] = {0, 1};
+  expectRefused(loadBytes(dir, twoParents.gltf()), "two parents");
+}
+
+TEST(GltfReject, UriLeavingTheFolder) {
+  expectRefused(loadWithBufferUri("../quad.bin"), "leaves the glTF's folder");
+  expectRefused(loadWithBufferUri("a/%2e%2e/%2E%2E/quad.bin"), "leaves the glTF's folder");
+  expectRefused(loadWithBufferUri("/etc/passwd"), "absolute path");
+  expectRefused(loadWithBufferUri("file:///etc/passwd"), "scheme 'file'");
+  expectRefused(loadWithBufferUri("http://example.com/a.bin"), "scheme 'http'");
+  expectRefused(loadWithBufferUri("C:\\Windows\\a.bin"), "drive or scheme");
+}
+
+TEST(GltfReject, BadBase64) {
+  expectRefused(loadWithBufferUri("data:application/octet-stream;base64,AAAA!!!!"), "invalid base64");
+  expectRefused(loadWithBufferUri("data:application/octet-stream,rawbytes"), "not base64");
+}
+
+TEST(GltfReject, MissingExternalFiles) {
+  expectRefused(loadWithBufferUri("missing.bin"), "missing.bin");
+  TempDir dir;
+  Doc d = quadDoc();
+  d.j["images"] = Json::array({{{"uri", "nowhere.png"}}});
+  expectRefused(loadBytes(dir, d.gltf()), "nowhere.png");
+}
+
+TEST(GltfReject, AbsurdImageDimensions) {
+  TempDir dir;
+  for (auto [w, h] : {std::pair<uint32_t, uint32_t>{100000, 100000}, {16385, 16}, {16384, 16384 + 1}}) {
+    Doc d = quadDoc();
+    d.j["images"] = Json::array({{{"uri", "data:image/png;base64," + base64(pngHeader(w, h))}}});
+    expectRefused(loadBytes(dir, d.gltf()), "image 0");
+  }
+  // Below the limits, the same header fails only for its missing pixels.
+  Doc d = quadDoc();
+  d.j["images"] = Json::array({{{"uri", "data:image/png;base64," + base64(pngHeader(16, 16))}}});
+  expectRefused(loadBytes(dir, d.gltf()), "cannot be decoded");
+}
+
+TEST(GltfReject, ImageBufferViewOutsideBuffer) {
+  TempDir dir;
+  Doc d = quadDoc();
+  d.j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 16}, {"byteLength", 1 << 20}});
+  d.j["images"] = Json::array({{{"bufferView", d.j["bufferViews"].size() - 1}, {"mimeType", "image/png"}}});
+  expectRefused(loadBytes(dir, d.gltf()), "lies outside its buffer");
+}
+
+TEST(GltfReject, RequiredUnknownExtension) {
+  TempDir dir;
+  Doc d = quadDoc();
+  d.j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  d.j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  expectRefused(loadBytes(dir, d.gltf()),
+                "requires extension KHR_draco_mesh_compression, which Rayster does not support");
+}
+
+TEST(GltfReject, LinesMode) {
+  TempDir dir;
+  Doc d = quadDoc();
+  primitive(d)["mode"] = 1;
+  expectRefused(loadBytes(dir, d.gltf()), "mesh 'quad' primitive 0 uses mode LINES, only triangles are supported");
+}
+
+TEST(GltfReject, WrongAccessorTypes) {
+  TempDir dir;
+  Doc d = quadDoc();
+  primitive(d)["attributes"]["POSITION"] = 2; // the VEC2 UV accessor
+  expectRefused(loadBytes(dir, d.gltf()), "accessor 2 has type VEC2, expected VEC3");
+  Doc e = quadDoc();
+  primitive(e)["indices"] = 0; // float positions as indices
+  expectRefused(loadBytes(dir, e.gltf()), "accessor 0 has type VEC3, expected SCALAR");
+  Doc f = quadDoc();
+  primitive(f)["attributes"]["NORMAL"] = 42;
+  expectRefused(loadBytes(dir, f.gltf()), "accessor 42 does not exist");
+}
+
+} // namespace
