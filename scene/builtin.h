@@ -1,5 +1,6 @@
 #pragma once
 // Scenes compiled into the binary, so every test and first run works without asset files.
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -9,12 +10,26 @@
 
 namespace rayster::scene {
 
-// Accepts "cornell" and "builtin:cornell". Unknown: ExitCode::BadInput listing what exists.
+// Accepts "NAME" and "builtin:NAME"; "instances" also takes a count, "instances:N". Unknown
+// names and bad counts: ExitCode::BadInput listing what exists.
 Result<Scene> makeBuiltinScene(std::string_view name);
+// The bare names (no "builtin:" and no parameters), in the order help text lists them.
 std::vector<std::string> builtinSceneNames();
 
 // The Cornell box from Cornell University's measured data, millimetres * 0.01 (room ~5.5 m),
 // with a mirror-like tall block and a sphere light under the ceiling.
 Scene makeCornellBox();
 
-} // namespace rayster::scene
+// Chrome Utah teapot and ice Stanford bunny on a procedural marble floor, sphere light, sky.
+// Fails only if an embedded mesh asset is corrupt.
+Result<Scene> makeWhittedScene();
+
+// A 5 x 3 grid of analytic spheres of assorted materials on a triangle floor, sun and sky.
+Scene makeSpheresScene();
+
+// `count` bunny instances (one mesh) on a square grid, sun and sky; count in 1..kMaxBuiltinInstances.
+inline constexpr uint32_t kDefaultBuiltinInstances = 64;
+inline constexpr uint32_t kMaxBuiltinInstances = 1'000'000;  // ~100 MB of instances; TLAS-sized tests
+Result<Scene> makeInstancesScene(uint32_t count);
+
+}  // namespace rayster::scene
