@@ -48,7 +48,7 @@ int run(int argc, char** argv) {
   RenderOptions ro;
   std::string size = "1280x720", primary = "auto";
   CLI::App* render = cli.add_subcommand("render", "Render a scene to an image, headless");
-  render->add_option("scene", ro.scene, "Scene: builtin:NAME (default builtin:cornell)");
+  render->add_option("scene", ro.scene, "Scene: a .gltf/.glb, .obj or .json scene file, or builtin:NAME (cornell, whitted, spheres, instances[:N]); default builtin:whitted");
   render->add_option("-o,--output", ro.output, "Output image, .png (tonemapped) or .exr (linear HDR)");
   render->add_option("--hdr", ro.hdrOutput, "Also write the linear HDR image to this .exr");
   render->add_option("--size", size, "Image size WxH (default 1280x720)");

@@ -6,7 +6,7 @@
 namespace rayster::app {
 
 struct RenderOptions {
-  std::string scene = "builtin:cornell";
+  std::string scene = "builtin:whitted";
   std::string output = "out/render.png";
   std::string hdrOutput;
   std::string jsonOutput;

@@ -55,7 +55,8 @@ struct Renderer::Impl {
     gpu::FrameConstants fc{};
     const float aspect = float(s.width) / float(s.height);
     glm::mat4 view = glm::lookAt(cam.position, cam.target, cam.up);
-    glm::mat4 proj = glm::perspective(cam.yFov, aspect, cam.zNear, cam.zFar);
+    // Reversed Z (near → 1, far → 0): swapping the planes in a [0,1]-depth projection does it.
+    glm::mat4 proj = glm::perspective(cam.yFov, aspect, cam.zFar, cam.zNear);
     proj[1][1] *= -1.0f;  // Vulkan clip space: y points down
     fc.clipFromWorld = proj * view;
     fc.worldFromClip = glm::inverse(fc.clipFromWorld);

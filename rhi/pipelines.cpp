@@ -115,7 +115,7 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
   VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   ds.depthTestEnable = d.depthFormat != VK_FORMAT_UNDEFINED;
   ds.depthWriteEnable = ds.depthTestEnable;
-  ds.depthCompareOp = VK_COMPARE_OP_LESS;
+  ds.depthCompareOp = d.depthCompare;
   std::vector<VkPipelineColorBlendAttachmentState> blend(d.colorFormats.size());
   for (auto& b : blend) b.colorWriteMask = 0xF;
   VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};

@@ -59,6 +59,7 @@ struct GraphicsPipelineDesc {
   std::string_view vertex, fragment;
   std::vector<VkFormat> colorFormats;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+  VkCompareOp depthCompare = VK_COMPARE_OP_GREATER;  // Rayster uses reversed Z
   VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
   std::vector<Binding> bindings;
   uint32_t pushConstantBytes = 0;

@@ -30,7 +30,7 @@ void main() {
   traceRayEXT(tlas, flags, kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
 
   if (payload.t < 0.0) {
-    imageStore(outDepth, px, vec4(1.0));
+    imageStore(outDepth, px, vec4(kBackgroundDepth));
     imageStore(outNormals, px, vec4(0.0));
     imageStore(outAlbedo, px, vec4(0.0));
     imageStore(outMaterial, px, vec4(0.0));

@@ -22,7 +22,7 @@ void main() {
   if (any(greaterThanEqual(uvec2(px), frame.size))) return;
   float depth = texelFetch(depthTex, px, 0).r;
   vec2 uv = (vec2(px) + 0.5) / vec2(frame.size);
-  if (depth >= 1.0) {
+  if (isBackground(depth)) {
     vec3 viewDir = worldFromDepth(frame.worldFromClip, uv, 1.0) - frame.cameraPosition.xyz;
     imageStore(outColor, px, vec4(environmentRadiance(viewDir), 1.0));
     return;

@@ -19,7 +19,7 @@ void main() {
   ivec2 px = ivec2(gl_LaunchIDEXT.xy);
   uint layer = gl_LaunchIDEXT.z;
   float depth = texelFetch(depthTex, px, 0).r;
-  if (depth >= 1.0) {
+  if (isBackground(depth)) {
     imageStore(outVisibility, ivec3(px, layer), vec4(0.0));
     return;
   }

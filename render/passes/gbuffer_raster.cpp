@@ -63,7 +63,7 @@ GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
         depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
         depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
         depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        depth.clearValue.depthStencil = {1.0f, 0};
+        depth.clearValue.depthStencil = {0.0f, 0};  // reversed Z: the far plane is 0
         VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
         ri.renderArea = {{0, 0}, in.size};
         ri.layerCount = 1;

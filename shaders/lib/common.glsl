@@ -66,6 +66,11 @@ void orthonormalBasis(vec3 n, out vec3 t, out vec3 b) {
   b = vec3(c, s + n.y * n.y * a, -n.y);
 }
 
+// Depth is reversed (near plane 1, far plane 0): float precision then stays relative at every
+// distance, so positions reconstructed from depth are exact enough to start shadow rays from.
+const float kBackgroundDepth = 0.0;
+bool isBackground(float depth) { return depth <= kBackgroundDepth; }
+
 vec3 worldFromDepth(mat4 worldFromClip, vec2 uv, float depth) {
   vec4 p = worldFromClip * vec4(uv * 2.0 - 1.0, depth, 1.0);
   return p.xyz / p.w;

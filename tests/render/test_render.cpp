@@ -23,7 +23,7 @@ TEST(Render, CornellLooksLikeACornellBox) {
   // Independent of the golden: the red wall is on the left, the green on the right, the light is
   // the brightest thing near the top, and the floor under the light is lit.
   auto dir = testDir();
-  Image8 img = renderOk(dir, "cornell", "--primary raster --frames 8", kW, kH);
+  Image8 img = renderOk(dir, "cornell", "builtin:cornell --primary raster --frames 8", kW, kH);
   const uint8_t* left = img.pixel(kW * 2 / 10, kH / 2);
   const uint8_t* right = img.pixel(kW * 8 / 10, kH / 2);
   EXPECT_GT(left[0], 2 * left[1] + 20) << "left wall should be red";
@@ -35,7 +35,7 @@ TEST(Render, CornellLooksLikeACornellBox) {
 
 TEST(Render, SameSeedSameImageOtherSeedOtherImage) {
   auto dir = testDir();
-  const std::string args = "--primary raster --frames 2";
+  const std::string args = "builtin:cornell --primary raster --frames 2";
   Image8 a = renderOk(dir, "a", args + " --seed 7", kW, kH);
   Image8 b = renderOk(dir, "b", args + " --seed 7", kW, kH);
   Image8 c = renderOk(dir, "c", args + " --seed 8", kW, kH);
@@ -45,8 +45,8 @@ TEST(Render, SameSeedSameImageOtherSeedOtherImage) {
 
 TEST(Render, RasterAndTracedGBufferAgree) {
   auto dir = testDir();
-  Image8 raster = renderOk(dir, "raster", "--primary raster --frames 4 --seed 3", kW, kH);
-  Image8 traced = renderOk(dir, "traced", "--primary rt --frames 4 --seed 3", kW, kH);
+  Image8 raster = renderOk(dir, "raster", "builtin:cornell --primary raster --frames 4 --seed 3", kW, kH);
+  Image8 traced = renderOk(dir, "traced", "builtin:cornell --primary rt --frames 4 --seed 3", kW, kH);
   ImageDiff diff = compare(raster, traced, 2);
   if (diff.fractionWithinTolerance < 0.995) (void)writePng(dir / "diff.png", diff.heatmap);
   // Both sample pixel centres with one projection; only silhouette pixels may differ.
@@ -65,7 +65,7 @@ TEST(Render, ShadowsConvergeWithFrames) {
   auto dir = testDir();
   auto render = [&](int frames, int seed) {
     return renderOk(dir, "f" + std::to_string(frames) + "s" + std::to_string(seed),
-                    "--primary raster --frames " + std::to_string(frames) + " --seed " + std::to_string(seed), kW, kH);
+                    "builtin:cornell --primary raster --frames " + std::to_string(frames) + " --seed " + std::to_string(seed), kW, kH);
   };
   Image8 ref = render(256, 100);
   double err1 = compare(ref, render(1, 1), 0).rmse;
