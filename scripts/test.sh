@@ -7,4 +7,8 @@ cd "$(dirname "$0")/.."
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
 cmake --build build
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
+# Fuzz smoke run of the glTF and OBJ loaders (clang, ASan + UBSan) on their committed corpora;
+# RAYSTER_FUZZ_SECONDS=0 skips it.
+fuzz_seconds=${RAYSTER_FUZZ_SECONDS:-45}
+if [ "$fuzz_seconds" -gt 0 ]; then ./scripts/fuzz.sh "$fuzz_seconds"; fi
 cd build && ctest --output-on-failure -j2
