@@ -48,6 +48,12 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   j["primary"] = render::primaryName(out.primaryUsed);
   if (out.rasterGBufferMs >= 0) j["auto"] = {{"raster_gbuffer_ms", out.rasterGBufferMs}, {"traced_gbuffer_ms", out.tracedGBufferMs}};
   j["frame_gpu_ms_median"] = out.frameMedianMs;
+  const auto& st = out.scene;
+  j["scene_stats"] = {{"triangles", st.triangles},         {"spheres", st.spheres},
+                      {"blas_bytes", st.blasBytes},         {"blas_compacted_bytes", st.blasCompactedBytes},
+                      {"tlas_bytes", st.tlasBytes},         {"upload_ms", st.uploadMs},
+                      {"accel_build_ms", st.accelBuildMs},  {"device_bytes_used", st.deviceBytesUsed},
+                      {"device_bytes_reserved", st.deviceBytesReserved}};
   for (const auto& p : out.passes)
     j["passes"].push_back({{"name", p.name}, {"median_ms", p.medianMs}, {"min_ms", p.minMs}, {"p95_ms", p.p95Ms},
                            {"frames", p.samples}});

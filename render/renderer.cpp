@@ -15,6 +15,7 @@
 #include "render/pipelines.h"
 #include "rhi/commands.h"
 #include "rhi/context.h"
+#include "rhi/memory.h"
 #include "shaders/shared/types.h"
 
 namespace rayster::render {
@@ -178,6 +179,11 @@ struct Renderer::Impl {
       if (s.progress) s.progress(f + 1, s.frames);
     }
 
+    out.scene = {gpu.triangleCount, gpu.sphereCount, gpu.accelStats.builtBytes, gpu.accelStats.compactedBytes,
+                 gpu.accelStats.tlasBytes, gpu.uploadMs, gpu.accelBuildMs, 0, 0};
+    const rhi::MemoryStats mem = ctx.memory().stats();
+    out.scene.deviceBytesUsed = mem.usedBytes;
+    out.scene.deviceBytesReserved = mem.reservedBytes;
     out.ldr = Image8::make(int(s.width), int(s.height));
     std::memcpy(out.ldr.rgba.data(), ldrReadback.mapped(), pixels * 4);
     out.hdr = ImageF::make(int(s.width), int(s.height));

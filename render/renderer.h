@@ -44,6 +44,12 @@ struct RenderOutput {
   double rasterGBufferMs = -1, tracedGBufferMs = -1;  // measured by --primary auto, else -1
   std::vector<PassStats> passes;                      // GPU time per pass over all frames
   double frameMedianMs = 0;                           // sum of the passes' medians
+  struct SceneStats {
+    uint64_t triangles = 0, spheres = 0;
+    uint64_t blasBytes = 0, blasCompactedBytes = 0, tlasBytes = 0;
+    double uploadMs = 0, accelBuildMs = 0;  // CPU wall time, including waits for the GPU
+    uint64_t deviceBytesUsed = 0, deviceBytesReserved = 0;
+  } scene;
 };
 
 class Renderer {
