@@ -9,9 +9,12 @@ out=dist/rayster-gpu
 rm -rf "$out"
 mkdir -p "$out/lib"
 cp build-release/rayster "$out/"
-# Libraries from Debian that a GPU image may lack; libc and libstdc++ come from the target (newer).
-# NVIDIA's Vulkan driver lives in libGLX_nvidia, which needs glvnd's dispatch libraries to load.
-for lib in libfmt.so.9 libtinyexr.so.1d libvulkan.so.1 libGLdispatch.so.0 libGLX.so.0 libEGL.so.1 libOpenGL.so.0 libGL.so.1; do
+# Every library the binary links, except the C/C++ runtime the target has (newer than Debian 12's),
+# plus what is loaded at run time: the Vulkan loader (volk dlopens it) and glvnd's dispatch
+# libraries, which NVIDIA's Vulkan driver (libGLX_nvidia) needs to load.
+runtime='^(libc|libm|libdl|libpthread|librt|libstdc\+\+|libgcc_s|ld-linux-x86-64|linux-vdso)\.'
+libs=$(ldd build-release/rayster | awk '/=> \// {print $1}' | grep -vE "$runtime")
+for lib in $libs libvulkan.so.1 libGLdispatch.so.0 libGLX.so.0 libEGL.so.1 libOpenGL.so.0 libGL.so.1; do
   path=$(ldconfig -p | awk -v l="$lib" '$1 == l && /x86-64/ {print $NF; exit}')
   [ -n "$path" ] || { echo "bundle-gpu: $lib not found (run scripts/setup.sh)" >&2; exit 1; }
   cp -L "$path" "$out/lib/$lib"
