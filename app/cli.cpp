@@ -59,6 +59,10 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"raster", "rt", "auto"}));
   render->add_option("--exposure", ro.settings.exposureEv, "Exposure in EV stops (default 0)");
   render->add_option("--camera", ro.settings.camera, "Camera name from the scene");
+  render->add_flag("--camera-path", ro.settings.cameraPath,
+                   "Fly along the scene file's camera path, one frame per 1/--path-fps seconds");
+  render->add_option("--path-fps", ro.settings.pathFps, "Frames per second of path playback (default 60)")
+      ->check(CLI::Range(1.0f, 10000.0f));
   render->add_flag("--timings", ro.printTimings, "Print per-pass GPU times");
   render->add_option("--json", ro.jsonOutput, "Write per-pass GPU times and settings as JSON to this file");
 

@@ -116,7 +116,27 @@ struct Renderer::Impl {
     return ms;
   }
 
+  // The camera at `frame` along the scene's path: linear between keys, clamped at the ends.
+  scene::Camera cameraOnPath(const scene::Camera& base, const RenderSettings& s, uint32_t frame) const {
+    const auto& keys = scene.cameraPath;
+    const float t = keys.front().time + float(frame) / s.pathFps;
+    scene::Camera cam = base;
+    size_t k = 0;
+    while (k + 1 < keys.size() && keys[k + 1].time <= t) ++k;
+    if (k + 1 >= keys.size()) {
+      cam.position = keys.back().position;
+      cam.target = keys.back().target;
+    } else {
+      const float a = (t - keys[k].time) / (keys[k + 1].time - keys[k].time);
+      cam.position = glm::mix(keys[k].position, keys[k + 1].position, a);
+      cam.target = glm::mix(keys[k].target, keys[k + 1].target, a);
+    }
+    return cam;
+  }
+
   Result<RenderOutput> render(const RenderSettings& s) {
+    if (s.cameraPath && scene.cameraPath.empty())
+      return makeError(ExitCode::BadArguments, "--camera-path: scene '{}' has no camera path", scene.name);
     const scene::Camera* cam = &scene.cameras.front();
     if (!s.camera.empty()) {
       auto it = std::find_if(scene.cameras.begin(), scene.cameras.end(),
@@ -148,7 +168,7 @@ struct Renderer::Impl {
 
     for (uint32_t f = 0; f < s.frames; ++f) {
       frameIndex = f;
-      writeConstants(s, *cam);
+      writeConstants(s, s.cameraPath ? cameraOnPath(*cam, s, f) : *cam);
       const bool last = f + 1 == s.frames;
       graph::RenderGraph graph(&ctx, &transients);
       FrameInputs in{pipelines, gpu, constants, nearest, {s.width, s.height}, gpu.bindless->set()};
@@ -158,7 +178,8 @@ struct Renderer::Impl {
       graph::ImageHandle prev = graph.importImage("shadow-history-prev", &shadowHistory[f % 2], &shadowHistoryState[f % 2]);
       graph::ImageHandle next =
           graph.importImage("shadow-history", &shadowHistory[(f + 1) % 2], &shadowHistoryState[(f + 1) % 2]);
-      graph::ImageHandle visibility = accumulateShadows(graph, in, raw, prev, next, f);
+      // A moving camera invalidates the history: until reprojection exists, each frame stands alone.
+      graph::ImageHandle visibility = accumulateShadows(graph, in, raw, prev, next, s.cameraPath ? 0 : f);
       graph::ImageHandle hdr = shadeLighting(graph, in, gb, visibility);
       graph::ImageHandle ldr = tonemap(graph, in, hdr, std::exp2(s.exposureEv), s.seed);
       if (last) {

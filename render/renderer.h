@@ -27,6 +27,10 @@ struct RenderSettings {
   Primary primary = Primary::Auto;
   float exposureEv = 0.0f;
   std::string camera;  // name; empty: the scene's first camera
+  // Follow the scene's camera path at pathFps frames per second (the camera above supplies the
+  // field of view and clip planes). A moving camera accumulates nothing across frames.
+  bool cameraPath = false;
+  float pathFps = 60.0f;
   // Called after each frame with (frames done, frames in all), e.g. to show progress.
   std::function<void(uint32_t, uint32_t)> progress;
 };

@@ -1,6 +1,7 @@
 // Goldens and behaviour checks for the built-in scenes, real glTF files and scene files, rendered
 // through the real binary with validation on.
 #include <filesystem>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
@@ -84,6 +85,32 @@ TEST(Scenes, SceneFileWithHdrEnvironmentMatchesGolden) {
   // The sky above the horizon is brighter and bluer than black: the map is really sampled.
   const uint8_t* sky = img.pixel(kW / 2, 2);
   EXPECT_GT(sky[2], 60) << "sky pixel should show the environment map";
+}
+
+TEST(Scenes, CameraPathEndsAtItsLastKey) {
+  // A 1-second path from the front to the side, played at 20 fps for 21 frames, ends exactly where
+  // a static camera at the last key looks: the two images agree up to shadow noise.
+  auto dir = testDir();
+  writeAlphaMaskGltf(dir);
+  auto file = dir / "path.json";
+  std::ofstream(file) << R"({
+  "models": [{"path": "alpha-mask.gltf"}],
+  "cameras": [{"name": "end", "position": [4, 2, 3], "target": [0, 1, 0], "yfov": 50}],
+  "cameraPath": [{"time": 0, "position": [0, 2, 6], "target": [0, 1, 0]},
+                 {"time": 1, "position": [4, 2, 3], "target": [0, 1, 0]}]
+})";
+  Image8 flown = renderOk(dir, "flown", file.string() + " --camera end --camera-path --path-fps 20 --frames 21", kW, kH);
+  Image8 still = renderOk(dir, "still", file.string() + " --camera end --frames 1", kW, kH);
+  Image8 start = renderOk(dir, "start", file.string() + " --camera end --camera-path --frames 1", kW, kH);
+  EXPECT_GT(compare(still, flown, 0).psnr, 25.0) << "the path's last frame should show the last key's view";
+  EXPECT_LT(compare(still, start, 0).psnr, 20.0) << "the path's first frame should show another view";
+}
+
+TEST(Scenes, CameraPathNeedsAPath) {
+  auto dir = testDir();
+  RunResult r = runRayster("render builtin:cornell --camera-path --size 32x24 -o " + (dir / "a.png").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("no camera path"), std::string::npos) << r.output;
 }
 
 } // namespace
