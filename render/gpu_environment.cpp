@@ -2,11 +2,10 @@
 // its diffuse irradiance as cosine-convolved order-2 spherical harmonics (Ramamoorthi & Hanrahan
 // 2001), projected here on the CPU once per scene.
 #include <cmath>
-#include <cstring>
 
 #include "core/half.h"
 #include "render/gpu_scene.h"
-#include "rhi/commands.h"
+#include "rhi/upload.h"
 #include "rhi/context.h"
 #include "shaders/shared/types.h"
 
@@ -55,37 +54,8 @@ void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& g
       for (int c = 0; c < 3; ++c) halves[i * 4 + c] = floatToHalf(std::min(env.rgb[i * 3 + c], 65000.0f));
       halves[i * 4 + 3] = floatToHalf(1.0f);
     }
-    gs.environmentMap = rhi::Image(ctx, {VK_FORMAT_R16G16B16A16_SFLOAT, w, h, 1,
-                                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT},
-                                   "environment");
-    rhi::Buffer staging(ctx, halves.size() * 2, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, rhi::MemoryUsage::Upload, "staging");
-    std::memcpy(staging.mapped(), halves.data(), halves.size() * 2);
-    rhi::OneShot cmd(ctx);
-    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-    b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = gs.environmentMap.handle();
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.imageMemoryBarrierCount = 1;
-    dep.pImageMemoryBarriers = &b;
-    vkCmdPipelineBarrier2(cmd, &dep);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {w, h, 1};
-    vkCmdCopyBufferToImage(cmd, staging.handle(), gs.environmentMap.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
-                           &region);
-    b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-    b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    b.dstAccessMask = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
-    b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    vkCmdPipelineBarrier2(cmd, &dep);
-    cmd.submitAndWait();
+    gs.environmentMap = rhi::uploadImage(ctx, {VK_FORMAT_R16G16B16A16_SFLOAT, w, h, 1, 0},
+                                         std::as_bytes(std::span(halves)), false, "environment");
     // Longitude wraps, latitude clamps at the poles.
     gs.samplers.emplace_back(ctx, VK_FILTER_LINEAR, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT,
                              VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false);
