@@ -46,10 +46,22 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   shadow.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kStorage}};
   p.shadows = rhi::RayTracingPipeline(ctx, shadow);
 
+  rhi::RayTracingPipelineDesc specular;
+  specular.raygen = "specular.rgen";
+  specular.miss = {"primary.rmiss", "shadow.rmiss"};  // radiance rays miss 0, shadow rays miss 1
+  specular.hitGroups = primary.hitGroups;
+  specular.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
+                       {6, kStorage}};
+  specular.globalSet = textures;
+  p.specular = rhi::RayTracingPipeline(ctx, specular);
+  const rhi::Binding radiance[] = {{1, kStorage}, {2, kStorage}, {3, kStorage}};
+  p.radianceAccumulate = rhi::createComputePipeline(ctx, "radiance_accumulate.comp", radiance, 16);
+
   const rhi::Binding accumulate[] = {{1, kStorage}, {2, kStorage}, {3, kStorage}};
   p.shadowAccumulate = rhi::createComputePipeline(ctx, "shadow_accumulate.comp", accumulate, 16);
   const rhi::Binding lighting[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled},
-                                   {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage}};
+                                   {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage},
+                                   {8, kSampled}};
   p.lighting = rhi::createComputePipeline(ctx, "lighting.comp", lighting, 0, textures);
   const rhi::Binding tone[] = {{1, kSampled}, {2, kStorage}};
   p.tonemap = rhi::createComputePipeline(ctx, "tonemap.comp", tone, 16);

@@ -17,6 +17,8 @@ inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
 inline constexpr VkFormat kVisibilityFormat = VK_FORMAT_R16_SFLOAT;
 inline constexpr VkFormat kVisibilityHistoryFormat = VK_FORMAT_R32_SFLOAT;  // accumulated: never 8 or 16 bits
+inline constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kRadianceHistoryFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 struct Pipelines {
   rhi::Pipeline gbufferRaster;
@@ -24,6 +26,8 @@ struct Pipelines {
   rhi::RayTracingPipeline gbufferTraced;
   rhi::RayTracingPipeline shadows;
   rhi::Pipeline shadowAccumulate;
+  rhi::RayTracingPipeline specular;  // reflections and refractions (bounce loop)
+  rhi::Pipeline radianceAccumulate;
   rhi::Pipeline lighting;
   rhi::Pipeline tonemap;
 

@@ -41,6 +41,8 @@ struct Renderer::Impl {
   // Shadow history: two images, written alternately (never read and written by one dispatch).
   rhi::Image shadowHistory[2];
   graph::ResourceState shadowHistoryState[2];
+  rhi::Image specularHistory[2];
+  graph::ResourceState specularHistoryState[2];
   uint32_t frameIndex = 0;
 
   Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
@@ -92,6 +94,13 @@ struct Renderer::Impl {
       if (shadowHistory[i] && shadowHistory[i].desc() == desc) continue;
       shadowHistory[i] = rhi::Image(ctx, desc, i ? "shadow-history-1" : "shadow-history-0");
       shadowHistoryState[i] = {};
+    }
+    rhi::ImageDesc radiance{kRadianceHistoryFormat, s.width, s.height, 1,
+                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT};
+    for (int i = 0; i < 2; ++i) {
+      if (specularHistory[i] && specularHistory[i].desc() == radiance) continue;
+      specularHistory[i] = rhi::Image(ctx, radiance, i ? "specular-history-1" : "specular-history-0");
+      specularHistoryState[i] = {};
     }
   }
 
@@ -180,7 +189,14 @@ struct Renderer::Impl {
           graph.importImage("shadow-history", &shadowHistory[(f + 1) % 2], &shadowHistoryState[(f + 1) % 2]);
       // A moving camera invalidates the history: until reprojection exists, each frame stands alone.
       graph::ImageHandle visibility = accumulateShadows(graph, in, raw, prev, next, s.cameraPath ? 0 : f);
-      graph::ImageHandle hdr = shadeLighting(graph, in, gb, visibility);
+      graph::ImageHandle specularRaw = traceSpecular(graph, in, gb);
+      graph::ImageHandle specularPrev =
+          graph.importImage("specular-history-prev", &specularHistory[f % 2], &specularHistoryState[f % 2]);
+      graph::ImageHandle specularNext =
+          graph.importImage("specular-history", &specularHistory[(f + 1) % 2], &specularHistoryState[(f + 1) % 2]);
+      graph::ImageHandle specular =
+          accumulateRadiance(graph, in, specularRaw, specularPrev, specularNext, s.cameraPath ? 0 : f);
+      graph::ImageHandle hdr = shadeLighting(graph, in, gb, visibility, specular);
       graph::ImageHandle ldr = tonemap(graph, in, hdr, std::exp2(s.exposureEv), s.seed);
       if (last) {
         readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));

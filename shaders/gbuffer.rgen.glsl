@@ -6,6 +6,7 @@
 #include "lib/surface.glsl"
 #include "lib/sphere.glsl"
 #include "lib/primary_payload.glsl"
+#include "lib/hit_surface.glsl"
 
 // Traced primary rays (--primary rt): writes the same G-buffer as the raster pass. Depth goes to
 // R32F (D32 is no storage format) as the same clip-space depth the rasteriser would produce.
@@ -39,42 +40,9 @@ void main() {
     return;
   }
 
-  InstanceRecord inst = Instances(frame.instances).i[payload.instance];
-  GeometryRecord g = Geometries(frame.geometries).g[payload.geometry];
   SurfacePoint sp;
   MaterialRecord m;
-  if (g.kind == kGeometrySpheres) {
-    SphereRecord s = Spheres(g.vertexAddress).s[payload.primitive];
-    m = Materials(frame.materials).m[s.material];
-    sp.position = origin + payload.t * dir;
-    vec3 objPos = (inverse(inst.worldFromObject) * vec4(sp.position, 1.0)).xyz;
-    vec3 objNormal;
-    vec2 tex;
-    vec4 tangent;
-    sphereAttributes(s.center, objPos, objNormal, tex, tangent);
-    sp.normal = (inst.normalFromObject * vec4(objNormal, 0.0)).xyz;
-    sp.geometricNormal = sp.normal;
-    sp.tangent = vec4((inst.worldFromObject * vec4(tangent.xyz, 0.0)).xyz, tangent.w);
-    sp.uv0 = tex;
-    sp.uv1 = tex;
-  } else {
-    m = Materials(frame.materials).m[g.material];
-    Indices idx = Indices(g.indexAddress);
-    Vertices vtx = Vertices(g.vertexAddress);
-    uint base = payload.primitive * 3u;
-    Vertex v0 = vtx.v[idx.i[base]], v1 = vtx.v[idx.i[base + 1u]], v2 = vtx.v[idx.i[base + 2u]];
-    vec3 w = vec3(1.0 - payload.bary.x - payload.bary.y, payload.bary.x, payload.bary.y);
-    vec3 p0, p1, p2;
-    trianglePositions(g, inst, payload.primitive, p0, p1, p2);
-    // Interpolating the triangle's world positions is more precise than origin + t·dir.
-    sp.position = p0 * w.x + p1 * w.y + p2 * w.z;
-    sp.normal = (inst.normalFromObject * vec4(v0.normal * w.x + v1.normal * w.y + v2.normal * w.z, 0.0)).xyz;
-    vec4 t = v0.tangent * w.x + v1.tangent * w.y + v2.tangent * w.z;
-    sp.tangent = vec4((inst.worldFromObject * vec4(t.xyz, 0.0)).xyz, v0.tangent.w);
-    sp.geometricNormal = cross(p1 - p0, p2 - p0);
-    sp.uv0 = v0.uv0 * w.x + v1.uv0 * w.y + v2.uv0 * w.z;
-    sp.uv1 = v0.uv1 * w.x + v1.uv1 * w.y + v2.uv1 * w.z;
-  }
+  surfaceAtHit(payload, origin, dir, sp, m);
   GBufferValues gb = evaluateSurface(m, sp, origin);
 
   vec4 clip = frame.clipFromWorld * vec4(sp.position, 1.0);

@@ -48,8 +48,14 @@ graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in
 graph::ImageHandle accumulateShadows(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle raw,
                                      graph::ImageHandle history, graph::ImageHandle next, uint32_t samples);
 
+// Reflections and refractions of mirror, metal and glass pixels (RGBA16F radiance, 0 elsewhere).
+graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
+// Running mean of a radiance image over frames: reads `history` (holding `samples`), writes `next`.
+graph::ImageHandle accumulateRadiance(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle raw,
+                                      graph::ImageHandle history, graph::ImageHandle next, uint32_t samples);
+
 graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                 graph::ImageHandle visibility);
+                                 graph::ImageHandle visibility, graph::ImageHandle specular);
 graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle hdr, float exposure,
                            uint32_t seed);
 // Copies an image into a host-visible buffer and makes it visible to the host.

@@ -56,6 +56,7 @@ float rnd(inout uint state) {
 // Streams, so toggling one effect leaves the others' noise unchanged.
 const uint kShadowStream = 0x51A0u;
 const uint kAlphaStream = 0xA1FAu;
+const uint kSpecularStream = 0x5BEC0u;
 
 // Branchless orthonormal basis (Duff et al. 2017).
 void orthonormalBasis(vec3 n, out vec3 t, out vec3 b) {

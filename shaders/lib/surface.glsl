@@ -3,10 +3,21 @@
 #ifndef RAYSTER_SURFACE_GLSL
 #define RAYSTER_SURFACE_GLSL
 
+// material.w packs what the bounce loop needs at the first interface: the index of refraction
+// (1..3 in 7 bits) and whether the surface is thin-walled (no volume: KHR_materials_volume absent).
+float packIor(float ior, bool thinWalled) {
+  return (clamp(round((ior - 1.0) * 63.5), 0.0, 127.0) + (thinWalled ? 128.0 : 0.0)) / 255.0;
+}
+void unpackIor(float w, out float ior, out bool thinWalled) {
+  float b = round(w * 255.0);
+  thinWalled = b >= 128.0;
+  ior = 1.0 + mod(b, 128.0) / 63.5;
+}
+
 struct GBufferValues {
   vec4 normals;   // xy: shading normal (oct), zw: geometric normal (oct)
   vec4 albedo;    // rgb: sRGB-encoded base colour, a: material ambient occlusion
-  vec4 material;  // roughness, metallic, transmission, flags / 255
+  vec4 material;  // roughness, metallic, transmission, packIor(ior, thin-walled)
   vec4 emissive;  // rgb: linear radiance
 };
 
@@ -69,7 +80,7 @@ GBufferValues evaluateSurface(MaterialRecord m, SurfacePoint sp, vec3 cameraPos)
   GBufferValues o;
   o.normals = vec4(octEncode(ns), octEncode(ng));
   o.albedo = vec4(linearToSrgb(base.rgb), ao);
-  o.material = vec4(roughness, metallic, m.transmission, float(m.flags & 0xFFu) / 255.0);
+  o.material = vec4(roughness, metallic, m.transmission, packIor(m.ior, m.thickness <= 0.0));
   o.emissive = vec4(emissive, 0.0);
   return o;
 }
