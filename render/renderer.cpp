@@ -38,11 +38,26 @@ struct Renderer::Impl {
   graph::TransientPool transients;
   rhi::CommandList commands;
   rhi::TimestampPool timers;
-  // Shadow history: two images, written alternately (never read and written by one dispatch).
-  rhi::Image shadowHistory[2];
-  graph::ResourceState shadowHistoryState[2];
-  rhi::Image specularHistory[2];
-  graph::ResourceState specularHistoryState[2];
+  // A temporal history: two images written alternately, so no dispatch reads and writes one image.
+  struct History {
+    rhi::Image images[2];
+    graph::ResourceState states[2];
+    void ensure(rhi::Context& ctx, const rhi::ImageDesc& desc, const std::string& name) {
+      for (int i = 0; i < 2; ++i) {
+        if (images[i] && images[i].desc() == desc) continue;
+        images[i] = rhi::Image(ctx, desc, (name + "-" + std::to_string(i)).c_str());
+        states[i] = {};
+      }
+    }
+    // Frame f reads image f % 2 and writes the other.
+    graph::ImageHandle previous(graph::RenderGraph& g, const std::string& name, uint32_t f) {
+      return g.importImage(name + "-prev", &images[f % 2], &states[f % 2]);
+    }
+    graph::ImageHandle next(graph::RenderGraph& g, const std::string& name, uint32_t f) {
+      return g.importImage(name, &images[(f + 1) % 2], &states[(f + 1) % 2]);
+    }
+  };
+  History shadowHistory, specularHistory;
   uint32_t frameIndex = 0;
 
   Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
@@ -88,20 +103,13 @@ struct Renderer::Impl {
   }
 
   void ensureHistory(const RenderSettings& s) {
-    rhi::ImageDesc desc{kVisibilityHistoryFormat, s.width, s.height, std::max(shadowLights(), 1u),
-                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true};
-    for (int i = 0; i < 2; ++i) {
-      if (shadowHistory[i] && shadowHistory[i].desc() == desc) continue;
-      shadowHistory[i] = rhi::Image(ctx, desc, i ? "shadow-history-1" : "shadow-history-0");
-      shadowHistoryState[i] = {};
-    }
-    rhi::ImageDesc radiance{kRadianceHistoryFormat, s.width, s.height, 1,
-                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT};
-    for (int i = 0; i < 2; ++i) {
-      if (specularHistory[i] && specularHistory[i].desc() == radiance) continue;
-      specularHistory[i] = rhi::Image(ctx, radiance, i ? "specular-history-1" : "specular-history-0");
-      specularHistoryState[i] = {};
-    }
+    shadowHistory.ensure(ctx,
+                         {kVisibilityHistoryFormat, s.width, s.height, std::max(shadowLights(), 1u),
+                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true},
+                         "shadow-history");
+    specularHistory.ensure(
+        ctx, {kRadianceHistoryFormat, s.width, s.height, 1, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT},
+        "specular-history");
   }
 
   // Times one G-buffer producer alone: a warm-up frame, then a measured one.
@@ -184,16 +192,13 @@ struct Renderer::Impl {
 
       GBuffer gb = out.primaryUsed == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
       graph::ImageHandle raw = traceShadows(graph, in, gb, shadowLights());
-      graph::ImageHandle prev = graph.importImage("shadow-history-prev", &shadowHistory[f % 2], &shadowHistoryState[f % 2]);
-      graph::ImageHandle next =
-          graph.importImage("shadow-history", &shadowHistory[(f + 1) % 2], &shadowHistoryState[(f + 1) % 2]);
+      graph::ImageHandle prev = shadowHistory.previous(graph, "shadow-history", f);
+      graph::ImageHandle next = shadowHistory.next(graph, "shadow-history", f);
       // A moving camera invalidates the history: until reprojection exists, each frame stands alone.
       graph::ImageHandle visibility = accumulateShadows(graph, in, raw, prev, next, s.cameraPath ? 0 : f);
       graph::ImageHandle specularRaw = traceSpecular(graph, in, gb);
-      graph::ImageHandle specularPrev =
-          graph.importImage("specular-history-prev", &specularHistory[f % 2], &specularHistoryState[f % 2]);
-      graph::ImageHandle specularNext =
-          graph.importImage("specular-history", &specularHistory[(f + 1) % 2], &specularHistoryState[(f + 1) % 2]);
+      graph::ImageHandle specularPrev = specularHistory.previous(graph, "specular-history", f);
+      graph::ImageHandle specularNext = specularHistory.next(graph, "specular-history", f);
       graph::ImageHandle specular =
           accumulateRadiance(graph, in, specularRaw, specularPrev, specularNext, s.cameraPath ? 0 : f);
       graph::ImageHandle hdr = shadeLighting(graph, in, gb, visibility, specular);
