@@ -64,6 +64,10 @@ int run(int argc, char** argv) {
   render->add_option("--path-fps", ro.settings.pathFps, "Frames per second of path playback (default 60)")
       ->check(CLI::Range(1.0f, 10000.0f));
   render->add_flag("--timings", ro.printTimings, "Print per-pass GPU times");
+  render->add_option("--aov", ro.aovs,
+                     "Also write intermediates as <stem>.<name>.png and .exr: all, or a comma-separated list of "
+                     "depth, normal, albedo, material, emissive, shadow-raw, shadow-denoised, reflection-raw, "
+                     "reflection-denoised");
   render->add_option("--json", ro.jsonOutput, "Write per-pass GPU times and settings as JSON to this file");
 
   CLI::App* info = cli.add_subcommand("info", "List Vulkan devices and their ray-tracing capabilities");

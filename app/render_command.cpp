@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -62,6 +63,36 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
 
 } // namespace
 
+// The PNG of an AOV is for looking at: normals map to colours, stored sRGB albedo is decoded so the
+// PNG encoder does not encode it twice. The EXR keeps the raw values.
+ImageF aovForDisplay(const std::string& name, ImageF img) {
+  for (size_t i = 0; i < img.rgba.size(); i += 4)
+    for (int c = 0; c < 3; ++c) {
+      float& v = img.rgba[i + c];
+      if (name == "normal") v = v * 0.5f + 0.5f;
+      if (name == "albedo") v = srgbToLinear(v);
+    }
+  return img;
+}
+
+Result<std::vector<std::string>> parseAovs(const std::string& list) {
+  std::vector<std::string> names;
+  if (list.empty()) return names;
+  if (list == "all") return render::aovNames();
+  size_t start = 0;
+  while (start <= list.size()) {
+    size_t comma = list.find(',', start);
+    std::string name = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const auto& known = render::aovNames();
+    if (std::find(known.begin(), known.end(), name) == known.end())
+      return makeError(ExitCode::BadArguments, "--aov: unknown name '{}' (see rayster render --help)", name);
+    names.push_back(name);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return names;
+}
+
 int renderCommand(const RenderOptions& o) {
   // Check everything about the outputs before any GPU work, so bad arguments fail fast.
   if (auto s = checkOutputPath(o.output, "output", {".png", ".exr"}); !s) return fail(s.error());
@@ -70,6 +101,8 @@ int renderCommand(const RenderOptions& o) {
   if (!o.jsonOutput.empty())
     if (auto s = checkOutputPath(o.jsonOutput, "--json", {".json"}); !s) return fail(s.error());
 
+  auto aovs = parseAovs(o.aovs);
+  if (!aovs) return fail(aovs.error());
   auto loadStart = std::chrono::steady_clock::now();
   auto scene = scene::loadScene(o.scene);
   if (!scene) return fail(scene.error());
@@ -86,6 +119,7 @@ int renderCommand(const RenderOptions& o) {
     if (!renderer) return fail(renderer.error());
     auto t0 = std::chrono::steady_clock::now();
     render::RenderSettings settings = o.settings;
+    settings.aovs = *aovs;
     // Long renders show progress on a terminal; logs and pipes stay clean.
     if (isatty(STDERR_FILENO) && settings.frames > 1)
       settings.progress = [](uint32_t done, uint32_t total) {
@@ -101,6 +135,12 @@ int renderCommand(const RenderOptions& o) {
     if (!written) return fail(written.error());
     if (!o.hdrOutput.empty())
       if (auto s = writeExr(o.hdrOutput, out->hdr); !s) return fail(s.error());
+    const std::filesystem::path outPath(o.output);
+    for (const auto& [name, img] : out->aovs) {
+      auto base = outPath.parent_path() / (outPath.stem().string() + "." + name);
+      if (auto s = writeImage(base.string() + ".png", aovForDisplay(name, img)); !s) return fail(s.error());
+      if (auto s = writeExr(base.string() + ".exr", img); !s) return fail(s.error());
+    }
     if (o.printTimings) {
       std::printf("%-20s %10s %10s %10s\n", "pass", "median ms", "min ms", "p95 ms");
       for (const auto& p : out->passes) std::printf("%-20s %10.3f %10.3f %10.3f\n", p.name.c_str(), p.medianMs, p.minMs, p.p95Ms);

@@ -10,6 +10,7 @@ struct RenderOptions {
   std::string output = "out/render.png";
   std::string hdrOutput;
   std::string jsonOutput;
+  std::string aovs;  // comma-separated names, or "all"
   bool printTimings = false;
   bool validation = false;
   bool debugLabels = true;

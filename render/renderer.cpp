@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <deque>
 #include <map>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -19,6 +21,46 @@
 #include "shaders/shared/types.h"
 
 namespace rayster::render {
+
+const std::vector<std::string>& aovNames() {
+  static const std::vector<std::string> names = {"depth",       "normal",         "albedo",          "material",
+                                                 "emissive",    "shadow-raw",     "shadow-denoised", "reflection-raw",
+                                                 "reflection-denoised"};
+  return names;
+}
+
+namespace {
+
+// Texel formats the AOVs come in, converted to RGBA float on the CPU.
+float texel(const uint8_t* data, VkFormat format, size_t index, int channel) {
+  switch (format) {
+    case VK_FORMAT_R32_SFLOAT:
+      return channel == 0 ? reinterpret_cast<const float*>(data)[index] : channel == 3 ? 1.0f : 0.0f;
+    case VK_FORMAT_D32_SFLOAT: return channel == 3 ? 1.0f : reinterpret_cast<const float*>(data)[index];
+    case VK_FORMAT_R16_SFLOAT:
+      return channel == 3 ? 1.0f : halfToFloat(reinterpret_cast<const uint16_t*>(data)[index]);
+    case VK_FORMAT_R16G16B16A16_SFLOAT: return halfToFloat(reinterpret_cast<const uint16_t*>(data)[index * 4 + channel]);
+    case VK_FORMAT_R32G32B32A32_SFLOAT: return reinterpret_cast<const float*>(data)[index * 4 + channel];
+    case VK_FORMAT_R16G16B16A16_SNORM:
+      return std::max(-1.0f, reinterpret_cast<const int16_t*>(data)[index * 4 + channel] / 32767.0f);
+    case VK_FORMAT_R8G8B8A8_UNORM: return data[index * 4 + channel] / 255.0f;
+    default: return 0.0f;
+  }
+}
+
+uint32_t texelBytes(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_R16_SFLOAT: return 2;
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_R8G8B8A8_UNORM: return 4;
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+    case VK_FORMAT_R16G16B16A16_SNORM: return 8;
+    default: return 16;
+  }
+}
+
+} // namespace
 
 const char* primaryName(Primary p) {
   switch (p) {
@@ -105,10 +147,12 @@ struct Renderer::Impl {
   void ensureHistory(const RenderSettings& s) {
     shadowHistory.ensure(ctx,
                          {kVisibilityHistoryFormat, s.width, s.height, std::max(shadowLights(), 1u),
-                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true},
+                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, true},
                          "shadow-history");
     specularHistory.ensure(
-        ctx, {kRadianceHistoryFormat, s.width, s.height, 1, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT},
+        ctx,
+        {kRadianceHistoryFormat, s.width, s.height, 1,
+         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
         "specular-history");
   }
 
@@ -180,6 +224,11 @@ struct Renderer::Impl {
     rhi::Buffer ldrReadback(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
     rhi::Buffer hdrReadback(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "hdr-readback");
     graph::ResourceState ldrState, hdrState;
+    std::vector<std::tuple<std::string, VkFormat, rhi::Buffer>> aovReadback;
+    std::deque<graph::ResourceState> aovStates;  // stable addresses for the graph
+    for (const std::string& name : s.aovs)
+      if (std::find(aovNames().begin(), aovNames().end(), name) == aovNames().end())
+        return makeError(ExitCode::BadArguments, "unknown AOV '{}'", name);
     std::map<std::string, std::vector<double>> passTimes;
     std::vector<std::string> passOrder;
 
@@ -206,6 +255,24 @@ struct Renderer::Impl {
       if (last) {
         readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));
         readback(graph, hdr, graph.importBuffer("hdr-readback", &hdrReadback, &hdrState));
+        // "denoised" stages are the temporal accumulation until the denoisers exist.
+        const std::map<std::string, graph::ImageHandle> stages = {
+            {"depth", gb.depth},      {"normal", gb.normals},         {"albedo", gb.albedo},
+            {"material", gb.material}, {"emissive", gb.emissive},     {"shadow-raw", raw},
+            {"shadow-denoised", visibility}, {"reflection-raw", specularRaw}, {"reflection-denoised", specular}};
+        for (const std::string& name : s.aovs) {
+          graph::ImageHandle h = stages.at(name);
+          const rhi::ImageDesc& d = graph.imageDesc(h);
+          // Layer 0 only: the first shadowed light.
+          aovReadback.emplace_back(name, d.format,
+                                   rhi::Buffer(ctx, size_t(d.width) * d.height * texelBytes(d.format) * d.layers,
+                                               VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
+                                               "aov-readback"));
+          aovStates.emplace_back();
+        }
+        for (size_t i = 0; i < aovReadback.size(); ++i)
+          readback(graph, stages.at(std::get<0>(aovReadback[i])),
+                   graph.importBuffer("aov-readback", &std::get<2>(aovReadback[i]), &aovStates[i]));
       }
 
       VkCommandBuffer cmd = commands.begin();
@@ -231,6 +298,13 @@ struct Renderer::Impl {
     out.hdr = ImageF::make(int(s.width), int(s.height));
     const uint16_t* halves = static_cast<const uint16_t*>(hdrReadback.mapped());
     for (size_t i = 0; i < pixels * 4; ++i) out.hdr.rgba[i] = halfToFloat(halves[i]);
+    for (auto& [name, format, buffer] : aovReadback) {
+      ImageF img = ImageF::make(int(s.width), int(s.height));
+      const uint8_t* data = static_cast<const uint8_t*>(buffer.mapped());
+      for (size_t i = 0; i < pixels; ++i)
+        for (int c = 0; c < 4; ++c) img.rgba[i * 4 + c] = texel(data, format, i, c);
+      out.aovs.emplace_back(name, std::move(img));
+    }
 
     for (const std::string& name : passOrder) {
       std::vector<double> v = passTimes[name];

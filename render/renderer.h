@@ -30,6 +30,8 @@ struct RenderSettings {
   // Follow the scene's camera path at pathFps frames per second (the camera above supplies the
   // field of view and clip planes). A moving camera accumulates nothing across frames.
   bool cameraPath = false;
+  // Intermediate images to return (names in aovNames()), read back after the last frame.
+  std::vector<std::string> aovs;
   float pathFps = 60.0f;
   // Called after each frame with (frames done, frames in all), e.g. to show progress.
   std::function<void(uint32_t, uint32_t)> progress;
@@ -41,9 +43,13 @@ struct PassStats {
   uint32_t samples = 0;
 };
 
+// Names accepted by RenderSettings::aovs, in the order `--aov all` writes them.
+const std::vector<std::string>& aovNames();
+
 struct RenderOutput {
   Image8 ldr;  // tonemapped, sRGB-encoded
   ImageF hdr;  // linear radiance
+  std::vector<std::pair<std::string, ImageF>> aovs;  // raw values, RGBA float (see aovNames())
   Primary primaryUsed = Primary::Raster;
   double rasterGBufferMs = -1, tracedGBufferMs = -1;  // measured by --primary auto, else -1
   std::vector<PassStats> passes;                      // GPU time per pass over all frames

@@ -24,7 +24,8 @@ GBuffer createGBufferTargets(graph::RenderGraph& graph, VkExtent2D size, bool tr
                                              VK_IMAGE_USAGE_TRANSFER_SRC_BIT})
                     : graph.createImage("gbuffer-depth",
                                         {kDepthFormat, size.width, size.height, 1,
-                                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+                                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                             VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
   gb.normals = target("gbuffer-normals", kNormalFormat);
   gb.albedo = target("gbuffer-albedo", kAlbedoFormat);
   gb.material = target("gbuffer-material", kMaterialFormat);

@@ -97,6 +97,29 @@ TEST(Render, ExrOutputIsLinearHdr) {
   EXPECT_GT(maxValue, 1.0f) << "the light's radiance is far above display white";
 }
 
+TEST(Render, AovsAreWrittenBesideTheOutput) {
+  auto dir = testDir();
+  RunResult r = runRayster("render builtin:whitted --size 64x48 --frames 2 --aov all -o " + (dir / "w.png").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* name : {"depth", "normal", "albedo", "material", "emissive", "shadow-raw", "shadow-denoised",
+                           "reflection-raw", "reflection-denoised"}) {
+    auto png = readPng(dir / (std::string("w.") + name + ".png"));
+    ASSERT_TRUE(png.ok()) << name;
+    auto exr = readExr(dir / (std::string("w.") + name + ".exr"));
+    ASSERT_TRUE(exr.ok()) << name;
+    // Every stage shows the scene: not blank, not uniform, no NaN (the whitted light's visible
+    // sphere is out of view, so its emissive image is rightly black).
+    if (std::string(name) == "emissive") continue;
+    EXPECT_FALSE(rejectEmpty(*exr, 64, 48).has_value()) << name << ": " << rejectEmpty(*exr, 64, 48).value_or("");
+  }
+  // Shadows are a fraction: the accumulated visibility stays within [0, 1].
+  auto shadow = readExr(dir / "w.shadow-denoised.exr");
+  for (size_t i = 0; i < shadow->rgba.size(); i += 4) ASSERT_TRUE(shadow->rgba[i] >= 0.0f && shadow->rgba[i] <= 1.0f);
+  auto bad = runRayster("render --size 32x24 --aov normal,bogus -o " + (dir / "x.png").string());
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+  EXPECT_NE(bad.output.find("bogus"), std::string::npos) << bad.output;
+}
+
 // ---- error paths: one-line cause, documented exit code, no output file ----
 
 void expectFailure(const RunResult& r, int code, const std::string& needle, const std::filesystem::path& out) {
