@@ -13,6 +13,7 @@
 #include "core/log.h"
 #include "graph/graph.h"
 #include "render/gpu_scene.h"
+#include "render/history.h"
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
 #include "rhi/commands.h"
@@ -80,25 +81,6 @@ struct Renderer::Impl {
   graph::TransientPool transients;
   rhi::CommandList commands;
   rhi::TimestampPool timers;
-  // A temporal history: two images written alternately, so no dispatch reads and writes one image.
-  struct History {
-    rhi::Image images[2];
-    graph::ResourceState states[2];
-    void ensure(rhi::Context& ctx, const rhi::ImageDesc& desc, const std::string& name) {
-      for (int i = 0; i < 2; ++i) {
-        if (images[i] && images[i].desc() == desc) continue;
-        images[i] = rhi::Image(ctx, desc, (name + "-" + std::to_string(i)).c_str());
-        states[i] = {};
-      }
-    }
-    // Frame f reads image f % 2 and writes the other.
-    graph::ImageHandle previous(graph::RenderGraph& g, const std::string& name, uint32_t f) {
-      return g.importImage(name + "-prev", &images[f % 2], &states[f % 2]);
-    }
-    graph::ImageHandle next(graph::RenderGraph& g, const std::string& name, uint32_t f) {
-      return g.importImage(name, &images[(f + 1) % 2], &states[(f + 1) % 2]);
-    }
-  };
   History shadowHistory, specularHistory;
   uint32_t frameIndex = 0;
 
