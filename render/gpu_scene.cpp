@@ -120,7 +120,7 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     const uint32_t mask = gpu::kMaskVisible | (inst.castsShadows ? gpu::kMaskCastsShadow : 0u);
     const uint32_t row = uint32_t(instanceRows.size());
     instanceRows.push_back({inst.worldFromObject, glm::inverseTranspose(inst.worldFromObject),
-                            meshFirstGeometry[inst.mesh], mask, 0, 0});
+                            meshFirstGeometry[inst.mesh], mask, 0, 0, inst.worldFromObject});
     for (uint32_t p = 0; p < mesh.primitives.size(); ++p)
       gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + p, uint32_t(mesh.primitives[p].indices.size()), false});
     if (!mesh.spheres.empty())

@@ -16,7 +16,7 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   g.globalSet = textures;
   g.vertex = "gbuffer.vert";
   g.fragment = "gbuffer.frag";
-  g.colorFormats = {kNormalFormat, kAlbedoFormat, kMaterialFormat, kEmissiveFormat, kIdFormat};
+  g.colorFormats = {kNormalFormat, kAlbedoFormat, kMaterialFormat, kEmissiveFormat, kIdFormat, kMotionFormat};
   g.depthFormat = kDepthFormat;
   g.bindings = {{0, kUniform}};
   g.pushConstantBytes = 8;
@@ -33,8 +33,8 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   primary.miss = {"primary.rmiss"};
   primary.hitGroups = {{"primary.rchit", "alpha.rahit", ""}, {"primary.rchit", "", "sphere.rint"}};
   primary.globalSet = textures;
-  primary.bindings = {{0, kUniform}, {1, kTlas},    {2, kStorage}, {3, kStorage},
-                      {4, kStorage}, {5, kStorage}, {6, kStorage}, {7, kStorage}};
+  primary.bindings = {{0, kUniform}, {1, kTlas},    {2, kStorage}, {3, kStorage}, {4, kStorage},
+                      {5, kStorage}, {6, kStorage}, {7, kStorage}, {8, kStorage}};
   p.gbufferTraced = rhi::RayTracingPipeline(ctx, primary);
 
   // Shadow rays skip closest hit: the miss shader marks visibility, any-hit tests alpha.

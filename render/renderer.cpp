@@ -25,7 +25,7 @@ namespace rayster::render {
 
 const std::vector<std::string>& aovNames() {
   static const std::vector<std::string> names = {"depth",       "normal",         "albedo",          "material",
-                                                 "emissive",    "shadow-raw",     "shadow-denoised", "reflection-raw",
+                                                 "emissive",    "motion",  "shadow-raw",     "shadow-denoised", "reflection-raw",
                                                  "reflection-denoised"};
   return names;
 }
@@ -40,6 +40,8 @@ float texel(const uint8_t* data, VkFormat format, size_t index, int channel) {
     case VK_FORMAT_D32_SFLOAT: return channel == 3 ? 1.0f : reinterpret_cast<const float*>(data)[index];
     case VK_FORMAT_R16_SFLOAT:
       return channel == 3 ? 1.0f : halfToFloat(reinterpret_cast<const uint16_t*>(data)[index]);
+    case VK_FORMAT_R16G16_SFLOAT:
+      return channel < 2 ? halfToFloat(reinterpret_cast<const uint16_t*>(data)[index * 2 + channel]) : channel == 3 ? 1.0f : 0.0f;
     case VK_FORMAT_R16G16B16A16_SFLOAT: return halfToFloat(reinterpret_cast<const uint16_t*>(data)[index * 4 + channel]);
     case VK_FORMAT_R32G32B32A32_SFLOAT: return reinterpret_cast<const float*>(data)[index * 4 + channel];
     case VK_FORMAT_R16G16B16A16_SNORM:
@@ -53,6 +55,7 @@ uint32_t texelBytes(VkFormat format) {
   switch (format) {
     case VK_FORMAT_R16_SFLOAT: return 2;
     case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_R16G16_SFLOAT:
     case VK_FORMAT_D32_SFLOAT:
     case VK_FORMAT_R8G8B8A8_UNORM: return 4;
     case VK_FORMAT_R16G16B16A16_SFLOAT:
@@ -83,6 +86,7 @@ struct Renderer::Impl {
   rhi::TimestampPool timers;
   History shadowHistory, specularHistory;
   uint32_t frameIndex = 0;
+  glm::mat4 prevClipFromWorld{1.0f};  // last frame's unjittered projection, for motion vectors
 
   Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
       : ctx(c), scene(s), gpu(std::move(g)), pipelines(Pipelines::create(c, gpu.bindless->layout())),
@@ -102,6 +106,10 @@ struct Renderer::Impl {
     proj[1][1] *= -1.0f;  // Vulkan clip space: y points down
     fc.clipFromWorld = proj * view;
     fc.worldFromClip = glm::inverse(fc.clipFromWorld);
+    fc.unjitteredClipFromWorld = fc.clipFromWorld;
+    // The first frame of a run has no previous frame: zero camera motion.
+    fc.prevClipFromWorld = frameIndex == 0 ? fc.unjitteredClipFromWorld : prevClipFromWorld;
+    prevClipFromWorld = fc.unjitteredClipFromWorld;
     fc.cameraPosition = glm::vec4(cam.position, 1.0f);
     fc.ambient = glm::vec4(scene.ambient, 0.0f);
     fc.size = {s.width, s.height};
@@ -240,7 +248,7 @@ struct Renderer::Impl {
         // "denoised" stages are the temporal accumulation until the denoisers exist.
         const std::map<std::string, graph::ImageHandle> stages = {
             {"depth", gb.depth},      {"normal", gb.normals},         {"albedo", gb.albedo},
-            {"material", gb.material}, {"emissive", gb.emissive},     {"shadow-raw", raw},
+            {"material", gb.material}, {"emissive", gb.emissive},     {"motion", gb.motion},     {"shadow-raw", raw},
             {"shadow-denoised", visibility}, {"reflection-raw", specularRaw}, {"reflection-denoised", specular}};
         for (const std::string& name : s.aovs) {
           graph::ImageHandle h = stages.at(name);

@@ -4,6 +4,7 @@
 #define RAYSTER_SAMPLE(slot, uv) texture(textures[nonuniformEXT(slot)], uv)
 #include "lib/textures.glsl"
 #include "lib/surface.glsl"
+#include "lib/motion.glsl"
 #include "lib/gbuffer_out.glsl"
 
 layout(push_constant, scalar) uniform Push { uint instance; uint geometry; } pc;
@@ -13,6 +14,7 @@ layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec4 inTangent;
 layout(location = 3) in vec2 inUv0;
 layout(location = 4) in vec2 inUv1;
+layout(location = 5) in vec3 inPrevWorldPos;
 
 void main() {
   InstanceRecord inst = Instances(frame.instances).i[pc.instance];
@@ -23,5 +25,5 @@ void main() {
   vec3 p0, p1, p2;
   trianglePositions(g, inst, uint(gl_PrimitiveID), p0, p1, p2);
   SurfacePoint sp = SurfacePoint(inWorldPos, inNormal, inTangent, cross(p1 - p0, p2 - p0), inUv0, inUv1);
-  writeGBuffer(evaluateSurface(m, sp, frame.cameraPosition.xyz), pc.instance);
+  writeGBuffer(evaluateSurface(m, sp, frame.cameraPosition.xyz), pc.instance, motionFromWorld(inWorldPos, inPrevWorldPos));
 }

@@ -7,6 +7,7 @@
 #include "lib/sphere.glsl"
 #include "lib/primary_payload.glsl"
 #include "lib/hit_surface.glsl"
+#include "lib/motion.glsl"
 
 // Traced primary rays (--primary rt): writes the same G-buffer as the raster pass. Depth goes to
 // R32F (D32 is no storage format) as the same clip-space depth the rasteriser would produce.
@@ -17,6 +18,7 @@ layout(set = 0, binding = 4, rgba8) uniform writeonly image2D outAlbedo;
 layout(set = 0, binding = 5, rgba8) uniform writeonly image2D outMaterial;
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D outEmissive;
 layout(set = 0, binding = 7, r32ui) uniform writeonly uimage2D outId;
+layout(set = 0, binding = 8, rg16f) uniform writeonly image2D outMotion;
 
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
 
@@ -37,6 +39,7 @@ void main() {
     imageStore(outMaterial, px, vec4(0.0));
     imageStore(outEmissive, px, vec4(0.0));
     imageStore(outId, px, uvec4(kBackgroundId));
+    imageStore(outMotion, px, vec4(0.0));
     return;
   }
 
@@ -52,4 +55,6 @@ void main() {
   imageStore(outMaterial, px, gb.material);
   imageStore(outEmissive, px, gb.emissive);
   imageStore(outId, px, uvec4(payload.instance));
+  InstanceRecord inst = Instances(frame.instances).i[payload.instance];
+  imageStore(outMotion, px, vec4(motionFromWorld(sp.position, previousWorld(inst, sp.position)), 0.0, 0.0));
 }

@@ -10,6 +10,7 @@ layout(location = 1) out vec3 outNormal;
 layout(location = 2) out vec4 outTangent;
 layout(location = 3) out vec2 outUv0;
 layout(location = 4) out vec2 outUv1;
+layout(location = 5) out vec3 outPrevWorldPos;  // for the motion vector
 
 void main() {
   InstanceRecord inst = Instances(frame.instances).i[pc.instance];
@@ -18,6 +19,7 @@ void main() {
   Vertex v = Vertices(g.vertexAddress).v[index];
   vec4 world = inst.worldFromObject * vec4(v.position, 1.0);
   outWorldPos = world.xyz;
+  outPrevWorldPos = (inst.prevWorldFromObject * vec4(v.position, 1.0)).xyz;
   outNormal = (inst.normalFromObject * vec4(v.normal, 0.0)).xyz;
   outTangent = vec4((inst.worldFromObject * vec4(v.tangent.xyz, 0.0)).xyz, v.tangent.w);
   outUv0 = v.uv0;

@@ -5,6 +5,7 @@
 #include "lib/textures.glsl"
 #include "lib/surface.glsl"
 #include "lib/sphere.glsl"
+#include "lib/motion.glsl"
 #include "lib/gbuffer_out.glsl"
 
 layout(push_constant, scalar) uniform Push { uint instance; uint geometry; } pc;
@@ -36,5 +37,6 @@ void main() {
   vec4 worldTangent = vec4((inst.worldFromObject * vec4(tangent.xyz, 0.0)).xyz, tangent.w);
   vec4 clip = frame.clipFromWorld * vec4(worldPos, 1.0);
   gl_FragDepth = clip.z / clip.w;
-  writeGBuffer(evaluateSurface(m, SurfacePoint(worldPos, n, worldTangent, n, tex, tex), origin), pc.instance);
+  writeGBuffer(evaluateSurface(m, SurfacePoint(worldPos, n, worldTangent, n, tex, tex), origin), pc.instance,
+              motionFromWorld(worldPos, previousWorld(inst, worldPos)));
 }

@@ -31,6 +31,7 @@ GBuffer createGBufferTargets(graph::RenderGraph& graph, VkExtent2D size, bool tr
   gb.material = target("gbuffer-material", kMaterialFormat);
   gb.emissive = target("gbuffer-emissive", kEmissiveFormat);
   gb.id = target("gbuffer-id", kIdFormat);
+  gb.motion = target("gbuffer-motion", kMotionFormat);
   return gb;
 }
 
@@ -44,13 +45,14 @@ GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
       "gbuffer-raster",
       [&](graph::PassBuilder& b) {
         b.write(gb.depth, graph::Use::DepthAttachment);
-        for (auto h : {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id})
+        for (auto h : {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion})
           b.write(h, graph::Use::ColorAttachment);
       },
       [gb, &in](graph::PassContext& pc) {
-        VkRenderingAttachmentInfo color[5];
-        graph::ImageHandle targets[5] = {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id};
-        for (int i = 0; i < 5; ++i) {
+        constexpr int kTargets = 6;
+        VkRenderingAttachmentInfo color[kTargets];
+        graph::ImageHandle targets[kTargets] = {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion};
+        for (int i = 0; i < kTargets; ++i) {
           color[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
           color[i].imageView = pc.image(targets[i]).view();
           color[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
@@ -68,7 +70,7 @@ GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
         VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
         ri.renderArea = {{0, 0}, in.size};
         ri.layerCount = 1;
-        ri.colorAttachmentCount = 5;
+        ri.colorAttachmentCount = kTargets;
         ri.pColorAttachments = color;
         ri.pDepthAttachment = &depth;
         vkCmdBeginRendering(pc.cmd, &ri);

@@ -12,7 +12,7 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
   graph.addPass(
       "gbuffer-traced",
       [&](graph::PassBuilder& b) {
-        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, gb.id})
+        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion})
           b.write(h, graph::Use::StorageWriteRayTracing);
       },
       [gb, &in](graph::PassContext& pc) {
@@ -27,6 +27,7 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
             .storageImage(5, pc.image(gb.material).view())
             .storageImage(6, pc.image(gb.emissive).view())
             .storageImage(7, pc.image(gb.id).view())
+            .storageImage(8, pc.image(gb.motion).view())
             .push(pc.cmd, pipe);
         bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.layout());
         pipe.trace(pc.cmd, in.size.width, in.size.height);

@@ -37,6 +37,10 @@ struct GBuffer {
   graph::ImageHandle material;  // RGBA8: roughness, metallic, transmission, flags
   graph::ImageHandle emissive;  // RGBA16F
   graph::ImageHandle id;        // R32_UINT instance row, kBackgroundId for sky
+  // RG16F uvCurrent − uvPrevious (unjittered; TECHNIQUES.md §2): the history of a pixel is at
+  // uv − motion. Camera and object motion for geometry; 0 on the background, whose (camera)
+  // motion lib/motion.glsl computes from the matrices.
+  graph::ImageHandle motion;
 };
 
 GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in);

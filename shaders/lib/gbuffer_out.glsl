@@ -4,13 +4,15 @@ layout(location = 1) out vec4 outAlbedo;
 layout(location = 2) out vec4 outMaterial;
 layout(location = 3) out vec4 outEmissive;
 layout(location = 4) out uint outId;
+layout(location = 5) out vec2 outMotion;
 
-void writeGBuffer(GBufferValues gb, uint id) {
+void writeGBuffer(GBufferValues gb, uint id, vec2 motion) {
   outNormals = gb.normals;
   outAlbedo = gb.albedo;
   outMaterial = gb.material;
   outEmissive = gb.emissive;
   outId = id;
+  outMotion = motion;
 }
 
 // Per-pixel, per-frame coverage noise for alpha BLEND (stochastic transparency).

@@ -96,6 +96,7 @@ struct InstanceRecord {
   uint mask;
   uint pad0;
   uint pad1;
+  mat4 prevWorldFromObject;  // last frame's transform: object motion in the motion vectors
 };
 
 struct MaterialRecord {
@@ -158,6 +159,13 @@ struct FrameConstants {
   uint64_t instances;   // InstanceRecord[]
   uint64_t materials;   // MaterialRecord[]
   uint64_t lights;      // LightRecord[]
+  // Motion vectors (TECHNIQUES.md §2) use unjittered matrices; clipFromWorld/worldFromClip above
+  // carry this frame's sub-pixel jitter (TAA), so raster and primary rays follow it.
+  mat4 unjitteredClipFromWorld;
+  mat4 prevClipFromWorld;  // unjittered, last frame (this frame's on the first frame)
+  vec2 jitter;             // NDC offset added this frame
+  uint pad2;
+  uint pad3;
 };
 
 #ifdef __cplusplus
@@ -165,7 +173,7 @@ static_assert(sizeof(Vertex) == 56);
 static_assert(sizeof(SphereRecord) == 32);
 static_assert(sizeof(TextureSlot) == 32);
 static_assert(sizeof(GeometryRecord) == 32);
-static_assert(sizeof(InstanceRecord) == 144);
+static_assert(sizeof(InstanceRecord) == 208);
 static_assert(offsetof(InstanceRecord, firstGeometry) == 128);
 static_assert(offsetof(MaterialRecord, baseColorTexture) == 96);
 static_assert(sizeof(MaterialRecord) == 256);
@@ -174,7 +182,8 @@ static_assert(offsetof(FrameConstants, size) == 160);
 static_assert(offsetof(FrameConstants, environment) == 192);
 static_assert(offsetof(FrameConstants, irradianceSh) == 256);
 static_assert(offsetof(FrameConstants, geometries) == 400);
-static_assert(sizeof(FrameConstants) == 432);
+static_assert(offsetof(FrameConstants, unjitteredClipFromWorld) == 432);
+static_assert(sizeof(FrameConstants) == 576);
 } // namespace rayster::gpu
 #endif
 
