@@ -59,6 +59,10 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"raster", "rt", "auto"}));
   render->add_option("--exposure", ro.settings.exposureEv, "Exposure in EV stops (default 0)");
   render->add_option("--camera", ro.settings.camera, "Camera name from the scene");
+  render->add_option("--shadow-lights", ro.settings.shadowLights,
+                     "Lights with their own shadow layer (0-8, default 8); a scene with more lights picks one "
+                     "light per pixel by importance instead")
+      ->check(CLI::Range(0, 8));
   render->add_flag("--camera-path", ro.settings.cameraPath,
                    "Fly along the scene file's camera path, one frame per 1/--path-fps seconds");
   render->add_option("--path-fps", ro.settings.pathFps, "Frames per second of path playback (default 60)")

@@ -54,6 +54,15 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
                        {6, kStorage}};
   specular.globalSet = textures;
   p.specular = rhi::RayTracingPipeline(ctx, specular);
+
+  rhi::RayTracingPipelineDesc direct;
+  direct.raygen = "direct.rgen";
+  direct.miss = {"shadow.rmiss"};
+  direct.hitGroups = shadow.hitGroups;
+  direct.globalSet = textures;
+  direct.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
+                     {6, kStorage}};
+  p.direct = rhi::RayTracingPipeline(ctx, direct);
   const rhi::Binding radiance[] = {{1, kStorage}, {2, kStorage}, {3, kStorage}};
   p.radianceAccumulate = rhi::createComputePipeline(ctx, "radiance_accumulate.comp", radiance, 16);
 
@@ -61,7 +70,7 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   p.shadowAccumulate = rhi::createComputePipeline(ctx, "shadow_accumulate.comp", accumulate, 16);
   const rhi::Binding lighting[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled},
                                    {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage},
-                                   {8, kSampled}};
+                                   {8, kSampled}, {9, kSampled}};
   p.lighting = rhi::createComputePipeline(ctx, "lighting.comp", lighting, 0, textures);
   const rhi::Binding tone[] = {{1, kSampled}, {2, kStorage}};
   p.tonemap = rhi::createComputePipeline(ctx, "tonemap.comp", tone, 16);

@@ -28,6 +28,7 @@ struct Pipelines {
   rhi::RayTracingPipeline shadows;
   rhi::Pipeline shadowAccumulate;
   rhi::RayTracingPipeline specular;  // reflections and refractions (bounce loop)
+  rhi::RayTracingPipeline direct;    // many-light stochastic direct light
   rhi::Pipeline radianceAccumulate;
   rhi::Pipeline lighting;
   rhi::Pipeline tonemap;

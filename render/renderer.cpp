@@ -84,7 +84,7 @@ struct Renderer::Impl {
   graph::TransientPool transients;
   rhi::CommandList commands;
   rhi::TimestampPool timers;
-  History shadowHistory, specularHistory;
+  History shadowHistory, specularHistory, directHistory;
   uint32_t frameIndex = 0;
   glm::mat4 prevClipFromWorld{1.0f};  // last frame's unjittered projection, for motion vectors
 
@@ -95,7 +95,8 @@ struct Renderer::Impl {
                   "frame-constants"),
         commands(c), timers(c, 32) {}
 
-  uint32_t shadowLights() const { return std::min(gpu.lightCount, gpu::kMaxShadowLights); }
+  bool manyLights = false;  // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
+  uint32_t shadowLights() const { return manyLights ? 0u : std::min(gpu.lightCount, gpu::kMaxShadowLights); }
 
   void writeConstants(const RenderSettings& s, const scene::Camera& cam) {
     gpu::FrameConstants fc{};
@@ -117,6 +118,7 @@ struct Renderer::Impl {
     fc.seed = s.seed;
     fc.lightCount = gpu.lightCount;
     fc.shadowLightCount = shadowLights();
+    fc.manyLights = manyLights ? 1u : 0u;
     fc.exposure = std::exp2(s.exposureEv);
     fc.geometries = gpu.geometries.address();
     fc.instances = gpu.instances.address();
@@ -144,6 +146,11 @@ struct Renderer::Impl {
         {kRadianceHistoryFormat, s.width, s.height, 1,
          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
         "specular-history");
+    directHistory.ensure(
+        ctx,
+        {kRadianceHistoryFormat, manyLights ? s.width : 1, manyLights ? s.height : 1, 1,
+         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+        "direct-history");
   }
 
   // Times one G-buffer producer alone: a warm-up frame, then a measured one.
@@ -197,6 +204,10 @@ struct Renderer::Impl {
     }
     RenderOutput out;
     frameIndex = 0;
+    manyLights = gpu.lightCount > std::min(s.shadowLights, gpu::kMaxShadowLights);
+    if (manyLights)
+      log::info("{} lights, {} shadow layers: one light per pixel by importance", gpu.lightCount,
+                std::min(s.shadowLights, gpu::kMaxShadowLights));
     writeConstants(s, *cam);
     out.primaryUsed = s.primary;
     if (s.primary == Primary::Auto) {
@@ -240,7 +251,13 @@ struct Renderer::Impl {
       graph::ImageHandle specularNext = specularHistory.next(graph, "specular-history", f);
       graph::ImageHandle specular =
           accumulateRadiance(graph, in, specularRaw, specularPrev, specularNext, s.cameraPath ? 0 : f);
-      graph::ImageHandle hdr = shadeLighting(graph, in, gb, visibility, specular);
+      graph::ImageHandle direct;
+      if (manyLights) {
+        graph::ImageHandle directRaw = traceDirect(graph, in, gb);
+        direct = accumulateRadiance(graph, in, directRaw, directHistory.previous(graph, "direct-history", f),
+                                    directHistory.next(graph, "direct-history", f), s.cameraPath ? 0 : f);
+      }
+      graph::ImageHandle hdr = shadeLighting(graph, in, gb, visibility, specular, direct);
       graph::ImageHandle ldr = tonemap(graph, in, hdr, std::exp2(s.exposureEv), s.seed);
       if (last) {
         readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));

@@ -27,6 +27,9 @@ struct RenderSettings {
   Primary primary = Primary::Auto;
   float exposureEv = 0.0f;
   std::string camera;  // name; empty: the scene's first camera
+  // Scenes with at most this many lights (<= gpu::kMaxShadowLights) trace a shadow layer per light;
+  // with more, every pixel picks one light by importance (many-light mode).
+  uint32_t shadowLights = 8;
   // Follow the scene's camera path at pathFps frames per second (the camera above supplies the
   // field of view and clip planes). A moving camera accumulates nothing across frames.
   bool cameraPath = false;

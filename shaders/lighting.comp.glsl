@@ -2,12 +2,14 @@
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
 #include "lib/lights.glsl"
+#include "lib/light_select.glsl"
 #include "lib/brdf.glsl"
 #include "lib/textures.glsl"
 #include "lib/environment.glsl"
 
 // Deferred lighting: shadeSurface() (lib/shading.glsl, shared with the bounce loop) with the
-// ray-traced shadow visibility, plus the traced specular light of mirrors, metals and glass.
+// ray-traced shadow visibility (or, with many lights, the stochastic direct light of direct.rgen),
+// plus the traced specular light of mirrors, metals and glass.
 // Output: linear HDR radiance (RGBA16F).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 1) uniform sampler2D depthTex;
@@ -18,6 +20,7 @@ layout(set = 0, binding = 5) uniform sampler2D emissiveTex;
 layout(set = 0, binding = 6) uniform sampler2DArray visibilityTex;
 layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D outColor;
 layout(set = 0, binding = 8) uniform sampler2D specularTex;
+layout(set = 0, binding = 9) uniform sampler2D directTex;  // many-light mode: stochastic direct light
 
 ivec2 gPixel;
 
@@ -53,6 +56,8 @@ void main() {
   s.transmission = mat.b;
   s.emissive = texelFetch(emissiveTex, px, 0).rgb;
   uint rng = 0u;  // visibility comes from the shadow image: no random numbers needed here
-  vec3 radiance = shadeSurface(s, rng) + texelFetch(specularTex, px, 0).rgb;
+  bool many = frame.manyLights != 0u;
+  vec3 radiance = shadeSurface(s, !many, rng) + texelFetch(specularTex, px, 0).rgb;
+  if (many) radiance += texelFetch(directTex, px, 0).rgb;
   imageStore(outColor, px, vec4(radiance, 1.0));
 }

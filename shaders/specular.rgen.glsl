@@ -8,6 +8,7 @@
 #include "lib/primary_payload.glsl"
 #include "lib/hit_surface.glsl"
 #include "lib/lights.glsl"
+#include "lib/light_select.glsl"
 #include "lib/brdf.glsl"
 #include "lib/environment.glsl"
 
@@ -144,7 +145,7 @@ void main() {
     s.transmission = gb.material.b;
     s.ao = gb.albedo.a;
     s.emissive = gb.emissive.rgb;
-    radiance += beta * shadeSurface(s, rng);
+    radiance += beta * shadeSurface(s, true, rng);
     if (!tracedSpecular(s.roughness, s.transmission)) break;  // rough: fully shaded, the path ends
     scatter(dir, origin, beta, s.p, s.n, s.ng, entering, s.baseColor, s.metallic, s.transmission, m.ior, thinHit,
             rng);

@@ -58,8 +58,14 @@ graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& i
 graph::ImageHandle accumulateRadiance(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle raw,
                                       graph::ImageHandle history, graph::ImageHandle next, uint32_t samples);
 
+// Many lights: direct light from one importance-picked light per pixel, with its shadow ray
+// (RGBA16F radiance).
+graph::ImageHandle traceDirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
+
+// `direct`: the many-light direct radiance, or an invalid handle when every light has a layer.
 graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                 graph::ImageHandle visibility, graph::ImageHandle specular);
+                                 graph::ImageHandle visibility, graph::ImageHandle specular,
+                                 graph::ImageHandle direct = {});
 graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle hdr, float exposure,
                            uint32_t seed);
 // Copies an image into a host-visible buffer and makes it visible to the host.

@@ -164,7 +164,7 @@ struct FrameConstants {
   mat4 unjitteredClipFromWorld;
   mat4 prevClipFromWorld;  // unjittered, last frame (this frame's on the first frame)
   vec2 jitter;             // NDC offset added this frame
-  uint pad2;
+  uint manyLights;         // 1: one light per shading point by importance (lib/light_select.glsl)
   uint pad3;
 };
 

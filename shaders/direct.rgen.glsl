@@ -1,0 +1,70 @@
+#version 460
+#extension GL_EXT_ray_tracing : require
+#include "lib/common.glsl"
+#include "lib/frame.glsl"
+#include "lib/lights.glsl"
+#include "lib/light_select.glsl"
+#include "lib/textures.glsl"
+#include "lib/brdf.glsl"
+#include "lib/environment.glsl"
+
+// Many-light direct lighting (TECHNIQUES.md §8), used when the scene has more lights than shadow
+// layers: per pixel one light picked by importance (lib/light_select.glsl), one shadow ray towards a
+// uniform sample of its solid angle, and the light's shaded contribution divided by the pick's
+// probability, so the cost is one ray whatever the light count. Output: RGBA16F direct radiance
+// (the lighting pass adds it instead of looping over lights); 0 on the background.
+layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
+layout(set = 0, binding = 2) uniform sampler2D depthTex;
+layout(set = 0, binding = 3) uniform sampler2D normalTex;
+layout(set = 0, binding = 4) uniform sampler2D albedoTex;
+layout(set = 0, binding = 5) uniform sampler2D materialTex;
+layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D outDirect;
+
+layout(location = 0) rayPayloadEXT uint visible;
+
+float gDepthError;  // P's reconstruction error from quantised depth: part of the ray offset
+
+float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
+  LightRecord light = Lights(frame.lights).l[i];
+  float dist;
+  vec3 dir = sampleLightDirection(light, p, vec2(rnd(rng), rnd(rng)), dist);
+  if (dot(dir, ng) <= 0.0) return 0.0;
+  float eps = max(max(max(abs(p.x), max(abs(p.y), abs(p.z))), 1.0) * 1e-4, 4.0 * gDepthError);
+  visible = 0u;
+  uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT |
+               ((frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT);
+  traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, p + ng * eps, 0.0, dir, max(dist - eps, 0.0), 0);
+  return float(visible);
+}
+
+#include "lib/shading.glsl"
+
+void main() {
+  ivec2 px = ivec2(gl_LaunchIDEXT.xy);
+  float depth = texelFetch(depthTex, px, 0).r;
+  if (isBackground(depth)) {
+    imageStore(outDirect, px, vec4(0.0));
+    return;
+  }
+  vec2 uv = (vec2(px) + 0.5) / vec2(gl_LaunchSizeEXT.xy);
+  ShadingInput s;
+  s.p = worldFromDepth(frame.worldFromClip, uv, depth);
+  float nextDepth = uintBitsToFloat(floatBitsToUint(depth) + 1u);
+  gDepthError = distance(s.p, worldFromDepth(frame.worldFromClip, uv, nextDepth));
+  vec4 nn = texelFetch(normalTex, px, 0);
+  s.n = octDecode(nn.xy);
+  s.ng = octDecode(nn.zw);
+  s.v = normalize(frame.cameraPosition.xyz - s.p);
+  vec4 albedo = texelFetch(albedoTex, px, 0);
+  s.baseColor = srgbToLinear(albedo.rgb);
+  s.ao = albedo.a;
+  vec4 mat = texelFetch(materialTex, px, 0);
+  s.roughness = mat.r;
+  s.metallic = mat.g;
+  s.transmission = mat.b;
+  s.emissive = vec3(0.0);
+  uint rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kShadowStream);
+  vec3 direct = shadeDirect(s, shadingTerms(s), rng);
+  // A bright but finite clamp: a rare pick of a weak light far away must not become a firefly NaN.
+  imageStore(outDirect, px, vec4(min(direct, vec3(1e4)), 1.0));
+}
