@@ -155,7 +155,8 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   auto t1 = Clock::now();
   gs.blases = rhi::buildBlases(ctx, blasInputs, &gs.accelStats);
   for (auto& ti : tlasInstances) ti.accelerationStructureReference = gs.blases[ti.accelerationStructureReference].address();
-  gs.tlas = rhi::buildTlas(ctx, tlasInstances, &gs.accelStats);
+  gs.tlas = rhi::Tlas::build(ctx, tlasInstances, &gs.accelStats);
+  gs.tlasInstances = std::move(tlasInstances);
   gs.accelBuildMs = msSince(t1);
   return gs;
 }

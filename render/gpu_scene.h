@@ -40,7 +40,8 @@ struct GpuScene {
   rhi::Image environmentMap;
   GpuEnvironment environment;
   std::vector<rhi::AccelerationStructure> blases;
-  rhi::AccelerationStructure tlas;
+  rhi::Tlas tlas;
+  std::vector<VkAccelerationStructureInstanceKHR> tlasInstances;  // as built; updated when instances move
   std::vector<Draw> draws;  // raster: one per (instance, primitive or sphere set)
   uint32_t lightCount = 0;
   bool anyAlphaTested = false;  // MASK or BLEND somewhere: rays may not be forced opaque

@@ -179,41 +179,86 @@ std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std
   return result;  // `built` (uncompacted) is retired here
 }
 
-AccelerationStructure buildTlas(Context& ctx, std::span<const VkAccelerationStructureInstanceKHR> instances,
-                                AccelBuildStats* stats) {
-  const uint32_t count = uint32_t(instances.size());
-  Buffer instanceBuffer = createBufferWithData(
-      ctx, std::as_bytes(instances),
-      VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR, "tlas-instances");
+namespace {
+VkAccelerationStructureBuildGeometryInfoKHR tlasBuildInfo(const VkAccelerationStructureGeometryKHR* geo) {
+  VkAccelerationStructureBuildGeometryInfoKHR info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
+  info.type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR;
+  info.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR | VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_UPDATE_BIT_KHR;
+  info.geometryCount = 1;
+  info.pGeometries = geo;
+  return info;
+}
 
+VkAccelerationStructureGeometryKHR tlasGeometry(VkDeviceAddress instances) {
   VkAccelerationStructureGeometryKHR geo{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
   geo.geometryType = VK_GEOMETRY_TYPE_INSTANCES_KHR;
   geo.geometry.instances.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR;
-  geo.geometry.instances.data.deviceAddress = instanceBuffer.address();
-  VkAccelerationStructureBuildGeometryInfoKHR info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
-  info.type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR;
-  info.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR;
-  info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
-  info.geometryCount = 1;
-  info.pGeometries = &geo;
+  geo.geometry.instances.data.deviceAddress = instances;
+  return geo;
+}
+} // namespace
+
+void Tlas::allocate(uint32_t count) {
+  count_ = count;
+  const size_t bytes = std::max<size_t>(count, 1) * sizeof(VkAccelerationStructureInstanceKHR);
+  instances_ = Buffer(*ctx_, bytes,
+                      VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+                          VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                      MemoryUsage::Upload, "tlas-instances");
+  VkAccelerationStructureGeometryKHR geo = tlasGeometry(instances_.address());
+  VkAccelerationStructureBuildGeometryInfoKHR info = tlasBuildInfo(&geo);
   VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
-  vkGetAccelerationStructureBuildSizesKHR(ctx.device(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info, &count,
-                                          &sizes);
-  AccelerationStructure tlas =
-      createAccelerationStructure(ctx, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, sizes.accelerationStructureSize, "tlas");
-  const VkDeviceSize align = std::max<uint32_t>(ctx.caps().minScratchOffsetAlignment, 1);
-  Buffer scratch(ctx, sizes.buildScratchSize + align, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly,
-                 "tlas-scratch");
-  info.dstAccelerationStructure = tlas.handle();
-  info.scratchData.deviceAddress = alignUp(scratch.address(), align);
-  VkAccelerationStructureBuildRangeInfoKHR range{count, 0, 0, 0};
+  vkGetAccelerationStructureBuildSizesKHR(ctx_->device(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info,
+                                          &count, &sizes);
+  as_ = createAccelerationStructure(*ctx_, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, sizes.accelerationStructureSize,
+                                    "tlas");
+  const VkDeviceSize align = std::max<uint32_t>(ctx_->caps().minScratchOffsetAlignment, 1);
+  scratch_ = Buffer(*ctx_, std::max(sizes.buildScratchSize, sizes.updateScratchSize) + align,
+                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "tlas-scratch");
+}
+
+void Tlas::record(VkCommandBuffer cmd, bool refit) {
+  VkAccelerationStructureGeometryKHR geo = tlasGeometry(instances_.address());
+  VkAccelerationStructureBuildGeometryInfoKHR info = tlasBuildInfo(&geo);
+  info.mode = refit ? VK_BUILD_ACCELERATION_STRUCTURE_MODE_UPDATE_KHR : VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
+  info.srcAccelerationStructure = refit ? as_.handle() : VK_NULL_HANDLE;
+  info.dstAccelerationStructure = as_.handle();
+  const VkDeviceSize align = std::max<uint32_t>(ctx_->caps().minScratchOffsetAlignment, 1);
+  info.scratchData.deviceAddress = alignUp(scratch_.address(), align);
+  VkAccelerationStructureBuildRangeInfoKHR range{count_, 0, 0, 0};
   const VkAccelerationStructureBuildRangeInfoKHR* rangePtr = &range;
-  OneShot cmd(ctx);
+  // The previous frame's traversal (and build) must finish before this build rewrites the TLAS.
+  VkMemoryBarrier2 before{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  before.srcStageMask = VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR | VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR;
+  before.srcAccessMask = VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
+  before.dstStageMask = VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR;
+  before.dstAccessMask = VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.memoryBarrierCount = 1;
+  dep.pMemoryBarriers = &before;
+  vkCmdPipelineBarrier2(cmd, &dep);
   vkCmdBuildAccelerationStructuresKHR(cmd, 1, &info, &rangePtr);
   asBuildBarrier(cmd, VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR);
+}
+
+Tlas Tlas::build(Context& ctx, std::span<const VkAccelerationStructureInstanceKHR> instances, AccelBuildStats* stats) {
+  Tlas t;
+  t.ctx_ = &ctx;
+  t.allocate(uint32_t(instances.size()));
+  std::memcpy(t.instances_.mapped(), instances.data(), instances.size_bytes());
+  OneShot cmd(ctx);
+  t.record(cmd, false);
   cmd.submitAndWait();
-  if (stats) stats->tlasBytes = sizes.accelerationStructureSize;
-  return tlas;
+  if (stats) stats->tlasBytes = t.as_.size();
+  return t;
+}
+
+bool Tlas::update(VkCommandBuffer cmd, std::span<const VkAccelerationStructureInstanceKHR> instances) {
+  const bool refit = instances.size() == count_;
+  if (!refit) allocate(uint32_t(instances.size()));  // the old structure is retired, not freed under the GPU
+  std::memcpy(instances_.mapped(), instances.data(), instances.size_bytes());
+  record(cmd, refit);
+  return refit;
 }
 
 } // namespace rayster::rhi

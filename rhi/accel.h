@@ -58,8 +58,29 @@ struct AccelBuildStats {
 std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std::vector<BlasGeometry>> meshes,
                                                AccelBuildStats* stats);
 
-// Builds a TLAS over `instances` (their accelerationStructureReference are BLAS addresses).
-AccelerationStructure buildTlas(Context& ctx, std::span<const VkAccelerationStructureInstanceKHR> instances,
-                                AccelBuildStats* stats);
+// A TLAS over instances whose accelerationStructureReference are BLAS addresses, kept up to date
+// as instances move (TECHNIQUES.md §5): refitted (an UPDATE build, in place) when only transforms
+// change, rebuilt when the instance count changes. The instance array lives in host-visible
+// memory, written when an update is recorded: the caller keeps the previous frame's use finished.
+class Tlas {
+ public:
+  Tlas() = default;
+  // Builds and waits.
+  static Tlas build(Context& ctx, std::span<const VkAccelerationStructureInstanceKHR> instances, AccelBuildStats* stats);
+  // Records the refit (same count) or rebuild (other count) into `cmd`, followed by a barrier that
+  // makes the result visible to ray-tracing shaders. Returns true for a refit.
+  bool update(VkCommandBuffer cmd, std::span<const VkAccelerationStructureInstanceKHR> instances);
+  VkAccelerationStructureKHR handle() const { return as_.handle(); }
+  VkDeviceSize size() const { return as_.size(); }
+
+ private:
+  void allocate(uint32_t count);
+  void record(VkCommandBuffer cmd, bool refit);
+  Context* ctx_ = nullptr;
+  AccelerationStructure as_;
+  Buffer instances_;  // host-visible VkAccelerationStructureInstanceKHR[capacity]
+  Buffer scratch_;
+  uint32_t count_ = 0;
+};
 
 } // namespace rayster::rhi
