@@ -11,8 +11,8 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <glm/glm.hpp>
 #include <gtest/gtest.h>
+#include <glm/glm.hpp>
 
 #include "core/image.h"
 #include "core/image_io.h"
@@ -54,7 +54,8 @@ struct Mesh {
 
 // The unit square [-0.5, 0.5]² in the plane z = 0, facing +Z.
 inline Mesh unitQuad() {
-  return {{-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0.5f, 0.5f, 0, -0.5f, 0.5f, 0}, {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1},
+  return {{-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0.5f, 0.5f, 0, -0.5f, 0.5f, 0},
+          {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1},
           {0, 1, 2, 0, 2, 3}};
 }
 
@@ -94,10 +95,12 @@ inline void writeGltf(const std::filesystem::path& dir, const std::string& name,
   }
   const float peak = std::max(mat.emissive.x, std::max(mat.emissive.y, mat.emissive.z));
   const glm::vec3 emissiveFactor = peak > 0 ? mat.emissive / peak : glm::vec3(0.0f);
-  std::string extensions = fmt::format(R"("KHR_materials_emissive_strength": {{"emissiveStrength": {}}})", peak > 0 ? peak : 1.0f);
+  std::string extensions =
+      fmt::format(R"("KHR_materials_emissive_strength": {{"emissiveStrength": {}}})", peak > 0 ? peak : 1.0f);
   if (mat.transmission > 0)
-    extensions += fmt::format(R"(, "KHR_materials_transmission": {{"transmissionFactor": {}}}, "KHR_materials_ior": {{"ior": {}}})",
-                              mat.transmission, mat.ior);
+    extensions += fmt::format(
+        R"(, "KHR_materials_transmission": {{"transmissionFactor": {}}}, "KHR_materials_ior": {{"ior": {}}})",
+        mat.transmission, mat.ior);
   if (mat.thickness > 0)
     extensions += fmt::format(R"(, "KHR_materials_volume": {{"thicknessFactor": {}}})", mat.thickness);
   std::string json = fmt::format(
@@ -118,8 +121,8 @@ inline void writeGltf(const std::filesystem::path& dir, const std::string& name,
     {{"bufferView": 2, "componentType": 5125, "count": {16}, "type": "SCALAR"}}]
 }})",
       name, vec3Json(emissiveFactor), mat.baseColor.x, mat.baseColor.y, mat.baseColor.z, mat.metallic, mat.roughness,
-      extensions, buf.size(), base64(buf), vertexBytes, 2 * vertexBytes, mesh.indices.size() * 4, vertices, vec3Json(lo),
-      vec3Json(hi), mesh.indices.size());
+      extensions, buf.size(), base64(buf), vertexBytes, 2 * vertexBytes, mesh.indices.size() * 4, vertices,
+      vec3Json(lo), vec3Json(hi), mesh.indices.size());
   std::ofstream(dir / (name + ".gltf")) << json;
 }
 
@@ -147,15 +150,17 @@ struct SceneSpec {
 inline std::string darkLight() { return R"({"type": "point", "position": [0, 100, 0], "intensity": 0})"; }
 // A uniform environment of radiance `L` in every direction (the procedural sky, one colour).
 inline std::string uniformEnvironment(float L) {
-  return fmt::format(R"({{"sky": {{"zenith": [1, 1, 1], "horizon": [1, 1, 1], "ground": [1, 1, 1]}}, "intensity": {}}})", L);
+  return fmt::format(
+      R"({{"sky": {{"zenith": [1, 1, 1], "horizon": [1, 1, 1], "ground": [1, 1, 1]}}, "intensity": {}}})", L);
 }
 
 inline std::filesystem::path writeScene(const std::filesystem::path& dir, const std::string& name, const SceneSpec& s) {
   std::string models, lights;
   for (const Placed& m : s.models) {
     writeGltf(dir, m.name, m.mesh, m.material);
-    models += fmt::format(R"({}{{"path": "{}.gltf", "scale": {}, "rotate": {}, "translate": {}}})", models.empty() ? "" : ", ",
-                          m.name, vec3Json(m.scale), vec3Json(m.rotate), vec3Json(m.translate));
+    models +=
+        fmt::format(R"({}{{"path": "{}.gltf", "scale": {}, "rotate": {}, "translate": {}}})",
+                    models.empty() ? "" : ", ", m.name, vec3Json(m.scale), vec3Json(m.rotate), vec3Json(m.translate));
   }
   for (const std::string& l : s.lights) lights += (lights.empty() ? "" : ", ") + l;
   auto path = dir / (name + ".json");
@@ -231,4 +236,4 @@ inline Rendered renderHdr(const std::filesystem::path& dir, const std::string& n
   return out;
 }
 
-} // namespace rayster::test::analytic
+}  // namespace rayster::test::analytic

@@ -74,7 +74,8 @@ void expectGlassReflectance(double ior) {
   auto dir = testDir();
   SceneSpec s;
   s.models.push_back({"pane", unitQuad(), glass(float(ior), 0.0f), glm::vec3(1.5f, 1.5f, 1)});
-  s.models.push_back({"emitter", unitQuad(), emitter(1.0f), glm::vec3(40, 40, 1), glm::vec3(0, 180, 0), glm::vec3(0, 0, 8)});
+  s.models.push_back(
+      {"emitter", unitQuad(), emitter(1.0f), glm::vec3(40, 40, 1), glm::vec3(0, 180, 0), glm::vec3(0, 0, 8)});
   s.lights = {darkLight()};
   s.camera = {{0, 0, 4}, {0, 0, 0}, 30};
   const int frames = 64;
@@ -88,16 +89,13 @@ void expectGlassReflectance(double ior) {
   const double tol = 5 * sigma + 0.0008;
   EXPECT_NEAR(m.aov, f0, tol) << "reflection-denoised at ior " << ior;
   EXPECT_NEAR(m.hdr, f0, tol) << "final HDR at ior " << ior;
-  std::printf("[analytic] glass ior %.2f: HDR %.5f, reflection-denoised %.5f, expected %.5f ± %.5f (%d px × %d frames)\n",
-              ior, m.hdr, m.aov, f0, tol, m.pixels, frames);
+  std::printf(
+      "[analytic] glass ior %.2f: HDR %.5f, reflection-denoised %.5f, expected %.5f ± %.5f (%d px × %d frames)\n", ior,
+      m.hdr, m.aov, f0, tol, m.pixels, frames);
 }
 
-TEST(AnalyticFresnel, GlassIor150ReflectsFourPercent) {
-  expectGlassReflectance(1.5);
-}
-TEST(AnalyticFresnel, WaterIor133ReflectsTwoPercent) {
-  expectGlassReflectance(1.33);
-}
+TEST(AnalyticFresnel, GlassIor150ReflectsFourPercent) { expectGlassReflectance(1.5); }
+TEST(AnalyticFresnel, WaterIor133ReflectsTwoPercent) { expectGlassReflectance(1.33); }
 
 // 2. Penumbra of a sphere light behind a wall edge. Light: centre C = (0, H, −a), radius R. Wall:
 // the plane z = 0 for 0 ≤ y ≤ h, wide in x. From a floor point P = (px, 0, pz > 0), the wall's top
@@ -151,7 +149,11 @@ TEST(AnalyticShadow, SphereLightPenumbraIsVisibleSolidAngle) {
   SceneSpec s;
   s.models.push_back(floorQuad(6.0f));
   s.models.back().translate = {0, 0, 1.5f};
-  s.models.push_back({"wall", unitQuad(), {glm::vec3(0.5f)}, glm::vec3(8, g.wallHeight, 1), glm::vec3(0),
+  s.models.push_back({"wall",
+                      unitQuad(),
+                      {glm::vec3(0.5f)},
+                      glm::vec3(8, g.wallHeight, 1),
+                      glm::vec3(0),
                       glm::vec3(0, g.wallHeight / 2, 0)});
   s.lights = {fmt::format(R"({{"type": "point", "position": [{}, {}, {}], "radius": {}, "intensity": 20}})", g.light.x,
                           g.light.y, g.light.z, g.radius)};
@@ -176,8 +178,8 @@ TEST(AnalyticShadow, SphereLightPenumbraIsVisibleSolidAngle) {
       // 5σ per pixel (thousands of pixels), plus the quadrature and fp16 slack.
       if (std::abs(measured - expected) > 5 * sigma + 0.01) {
         if (++bad <= 5)
-          ADD_FAILURE() << "pixel (" << x << ", " << y << ") floor (" << p.x << ", " << p.z << "): visibility " << measured
-                        << ", visible solid-angle fraction " << expected << " (σ " << sigma << ")";
+          ADD_FAILURE() << "pixel (" << x << ", " << y << ") floor (" << p.x << ", " << p.z << "): visibility "
+                        << measured << ", visible solid-angle fraction " << expected << " (σ " << sigma << ")";
       }
       ++checked;
       if (expected > 0.02 && expected < 0.98) {
@@ -193,9 +195,10 @@ TEST(AnalyticShadow, SphereLightPenumbraIsVisibleSolidAngle) {
   EXPECT_LT(std::abs(meanZ), 4.0 / std::sqrt(double(penumbra)) + 0.05) << "biased penumbra";
   EXPECT_LT(rmsZ, 1.3) << "visibility noisier than " << frames << " independent samples";
   EXPECT_LT(worstDiskGap, 0.02) << "the disk approximation should agree with the exact solid angle here";
-  std::printf("[analytic] penumbra: %d px checked, %d in the penumbra; mean z %.3f, rms z %.3f, worst |err| %.3f; "
-              "disk approximation within %.4f of the exact solid angle\n",
-              checked, penumbra, meanZ, rmsZ, worst, worstDiskGap);
+  std::printf(
+      "[analytic] penumbra: %d px checked, %d in the penumbra; mean z %.3f, rms z %.3f, worst |err| %.3f; "
+      "disk approximation within %.4f of the exact solid angle\n",
+      checked, penumbra, meanZ, rmsZ, worst, worstDiskGap);
 }
 
 // 3. Hard sun shadow (a published pipeline's directional lights never shadowed): a 1×1 quad at
@@ -205,9 +208,10 @@ TEST(AnalyticShadow, SunCastsHardShadow) {
   auto dir = testDir();
   SceneSpec s;
   s.models.push_back(floorQuad(6.0f));
-  s.models.push_back({"blocker", unitQuad(), {glm::vec3(0.5f)}, glm::vec3(1), glm::vec3(-90, 0, 0), glm::vec3(0, 1, 0)});
+  s.models.push_back(
+      {"blocker", unitQuad(), {glm::vec3(0.5f)}, glm::vec3(1), glm::vec3(-90, 0, 0), glm::vec3(0, 1, 0)});
   s.lights = {R"({"type": "directional", "direction": [1, -1, 0], "intensity": 3, "angularRadius": 0})"};
-  s.camera = {{0, 6, 2}, {0.5f, 0, 0}, 60};
+  s.camera = {{2.5f, 5, 2}, {0.8f, 0, 0}, 50};
   const int size = 64;
   Rendered r = renderHdr(dir, "sun", writeScene(dir, "sun", s), size, size, 4, "shadow-denoised");
   ASSERT_TRUE(r.aovs.count("shadow-denoised"));
@@ -219,7 +223,8 @@ TEST(AnalyticShadow, SunCastsHardShadow) {
     for (int x = 0; x < size; ++x) {
       Ray ray = pixelRay(s.camera, size, size, x, y);
       glm::vec3 q, p;
-      if (hitHorizontal(ray, 1.0f, q) && std::abs(q.x) < 0.5f + margin && std::abs(q.z) < 0.5f + margin) continue;  // sees the blocker
+      if (hitHorizontal(ray, 1.0f, q) && std::abs(q.x) < 0.5f + margin && std::abs(q.z) < 0.5f + margin)
+        continue;  // sees the blocker
       if (!hitHorizontal(ray, 0.0f, p) || std::abs(p.x) > 2.8f || std::abs(p.z) > 2.8f) continue;
       glm::vec3 atBlocker = p + glm::vec3(-1, 1, 0);  // towards the sun, up to y = 1
       float inside = std::max(std::abs(atBlocker.x), std::abs(atBlocker.z));
@@ -251,8 +256,13 @@ TEST(AnalyticShadow, OccluderBehindLightCastsNothing) {
   auto dir = testDir();
   SceneSpec s;
   s.models.push_back(floorQuad(6.0f));
-  s.models.push_back({"ceiling", unitQuad(), {glm::vec3(0.5f)}, glm::vec3(8, 8, 1), glm::vec3(-90, 0, 0), glm::vec3(0, 2.15f, 0)});
-  s.models.push_back({"control", unitQuad(), {glm::vec3(0.5f)}, glm::vec3(0.6f, 0.6f, 1), glm::vec3(-90, 0, 0),
+  s.models.push_back(
+      {"ceiling", unitQuad(), {glm::vec3(0.5f)}, glm::vec3(8, 8, 1), glm::vec3(-90, 0, 0), glm::vec3(0, 2.15f, 0)});
+  s.models.push_back({"control",
+                      unitQuad(),
+                      {glm::vec3(0.5f)},
+                      glm::vec3(0.6f, 0.6f, 1),
+                      glm::vec3(-90, 0, 0),
                       glm::vec3(1.2f, 1, 0)});
   s.lights = {R"({"type": "point", "position": [0, 2, 0], "radius": 0.1, "intensity": 10})"};
   s.camera = {{0, 1.8f, 4.5f}, {0.8f, 0, 0}, 60};
@@ -267,7 +277,8 @@ TEST(AnalyticShadow, OccluderBehindLightCastsNothing) {
     for (int x = 0; x < size; ++x) {
       Ray ray = pixelRay(s.camera, size, size, x, y);
       glm::vec3 q, p;
-      if (hitHorizontal(ray, 1.0f, q) && std::abs(q.x - 1.2f) < 0.3f + margin && std::abs(q.z) < 0.3f + margin) continue;
+      if (hitHorizontal(ray, 1.0f, q) && std::abs(q.x - 1.2f) < 0.3f + margin && std::abs(q.z) < 0.3f + margin)
+        continue;
       if (!hitHorizontal(ray, 0.0f, p) || std::abs(p.x) > 2.8f || std::abs(p.z) > 2.8f) continue;
       glm::vec3 mid = p * 0.5f + glm::vec3(0, 1, 0);  // where the ray to the light's centre crosses y = 1
       float inside = std::max(std::abs(mid.x - 1.2f), std::abs(mid.z));
@@ -276,10 +287,12 @@ TEST(AnalyticShadow, OccluderBehindLightCastsNothing) {
         ++lit;
         minLit = std::min(minLit, double(v));
         if (v < 0.999f && ++bad <= 5)
-          ADD_FAILURE() << "floor (" << p.x << ", " << p.z << ") is shadowed (" << v << ") by the plane behind the light";
+          ADD_FAILURE() << "floor (" << p.x << ", " << p.z << ") is shadowed (" << v
+                        << ") by the plane behind the light";
       } else if (inside < 0.3f - margin) {
         ++umbra;
-        if (v > 0.001f && ++bad <= 5) ADD_FAILURE() << "floor (" << p.x << ", " << p.z << ") in the control's umbra: " << v;
+        if (v > 0.001f && ++bad <= 5)
+          ADD_FAILURE() << "floor (" << p.x << ", " << p.z << ") in the control's umbra: " << v;
       }
     }
   EXPECT_EQ(bad, 0);
@@ -291,19 +304,59 @@ TEST(AnalyticShadow, OccluderBehindLightCastsNothing) {
 
 // 5. Snell's lateral shift. A vertical emissive line (slanted 4° in its plane so that the mean of
 // per-row centroids is sub-pixel accurate) at z = −4 is seen from the camera at z = 12 along −Z,
-// through a glass slab of thickness t (ior 1.5, a volume, no absorption) turned θ about +Y. A ray
-// crossing the slab at incidence θ leaves parallel to itself, displaced sideways by
-// t·sin(θ − θt)/cos θt (sin θt = sin θ / 1.5), towards −X for θ > 0: so the line appears that far
-// towards +X. Measured: the line's image with and without the slab; pixels → world at the line's
-// distance through the known camera (square pixels, vertical field of view).
-void expectSnellShift(double thetaDeg) {
+// through a glass slab of thickness t (a volume, no absorption) turned θ about +Y. A ray crossing
+// the slab at incidence θ leaves parallel to itself, displaced sideways by t·sin(θ − θt)/cos θt
+// (sin θt = sin θ / n), towards −X for θ > 0: so the line appears that far towards +X. Measured:
+// the line's image with and without the slab; pixels → world at the line's distance through the
+// known camera (square pixels, vertical field of view).
+//
+// The closed form assumes parallel rays; the camera's rays diverge (≈ 0.6° here), which moves the
+// image by up to 0.26 px. `strict` also compares with the exact answer for this camera: Snell's law
+// applied at both faces to the pixel ray (in the XZ plane) that lands on the line, to 0.25 px.
+struct SnellCamera {
+  double cameraZ = 12, lineZ = -4, halfFovDeg = 6;
+  int size = 128;
+};
+
+// X where the camera ray leaving at angle `alpha` (from −Z towards +X) meets the line's plane,
+// after refracting into and out of the slab (faces at ±t/2 along the slab normal (sin θ, 0, cos θ)).
+double landingX(const SnellCamera& c, double alpha, double theta, double t, double ior) {
+  const glm::dvec2 n(std::sin(theta), std::cos(theta));  // (x, z)
+  auto hitFace = [&](glm::dvec2 o, glm::dvec2 d, double offset) {
+    return o + d * ((offset - glm::dot(o, n)) / glm::dot(d, n));
+  };
+  auto refractXZ = [&](glm::dvec2 d, double eta) {
+    double cosI = -glm::dot(d, n), k = 1 - eta * eta * (1 - cosI * cosI);
+    return eta * d + (eta * cosI - std::sqrt(k)) * n;
+  };
+  glm::dvec2 d(std::sin(alpha), -std::cos(alpha));
+  glm::dvec2 p = hitFace({0, c.cameraZ}, d, t / 2);
+  d = refractXZ(d, 1 / ior);
+  p = hitFace(p, d, -t / 2);
+  d = refractXZ(d, ior);
+  return p.x + d.x * (c.lineZ - p.y) / d.y;
+}
+
+// The image shift (pixels) of the line for this camera, by bisection on the pixel ray's angle.
+double tracedShiftPixels(const SnellCamera& c, double theta, double t, double ior) {
+  double lo = -0.1, hi = 0.1;
+  for (int i = 0; i < 100; ++i) {
+    double mid = 0.5 * (lo + hi);
+    (landingX(c, lo, theta, t, ior) * landingX(c, mid, theta, t, ior) <= 0 ? hi : lo) = mid;
+  }
+  return std::tan(0.5 * (lo + hi)) / std::tan(c.halfFovDeg * kPi / 180) * (c.size / 2);
+}
+
+void expectSnellShift(double thetaDeg, double ior, bool strict) {
   auto dir = testDir();
-  const double t = 0.5, ior = 1.5;
+  const double t = 0.5;
+  const SnellCamera cam;
   SceneSpec s;
-  s.models.push_back({"line", unitQuad(), emitter(1.0f), glm::vec3(0.15f, 6, 1), glm::vec3(0, 0, 4), glm::vec3(0, 0, -4)});
+  s.models.push_back({"line", unitQuad(), emitter(1.0f), glm::vec3(0.15f, 6, 1), glm::vec3(0, 0, 4),
+                      glm::vec3(0, 0, float(cam.lineZ))});
   s.lights = {darkLight()};
-  s.camera = {{0, 0, 12}, {0, 0, -4}, 12};
-  const int size = 128, frames = 16;
+  s.camera = {{0, 0, float(cam.cameraZ)}, {0, 0, float(cam.lineZ)}, float(2 * cam.halfFovDeg)};
+  const int size = cam.size, frames = 16;
   Rendered bare = renderHdr(dir, "bare", writeScene(dir, "bare", s), size, size, 1);
   s.models.push_back({"slab", unitBox(), glass(float(ior), float(t)), glm::vec3(3, 6, float(t)),
                       glm::vec3(0, float(thetaDeg), 0), glm::vec3(0)});
@@ -336,20 +389,36 @@ void expectSnellShift(double thetaDeg) {
 
   const double theta = thetaDeg * kPi / 180, thetaT = std::asin(std::sin(theta) / ior);
   const double expected = t * std::sin(theta - thetaT) / std::cos(thetaT);
-  const double distance = 16.0;  // camera to the line's plane, along the view axis
-  const double pixel = 2 * distance * std::tan(12.0 * kPi / 360) / size;  // world size of one pixel there
-  const double measured = (xSlab - xBare) * pixel;
-  EXPECT_NEAR(measured, expected, pixel) << "θ = " << thetaDeg << "°: image shift " << (xSlab - xBare) << " px";
-  std::printf("[analytic] Snell slab θ=%.0f° t=%.2f: shift %.4f (%.2f px), expected %.4f (%.2f px), one pixel = %.4f\n",
-              thetaDeg, t, measured, xSlab - xBare, expected, expected / pixel, pixel);
+  const double distance = cam.cameraZ - cam.lineZ;  // camera to the line's plane, along the view axis
+  const double pixel = 2 * distance * std::tan(cam.halfFovDeg * kPi / 180) / size;  // world size of one pixel there
+  const double shiftPx = xSlab - xBare, measured = shiftPx * pixel;
+  EXPECT_NEAR(measured, expected, pixel) << "θ = " << thetaDeg << "°, ior " << ior << ": image shift " << shiftPx
+                                         << " px";
+  const double traced = tracedShiftPixels(cam, theta, t, ior);
+  if (strict) {
+    EXPECT_NEAR(shiftPx, traced, 0.25) << "θ = " << thetaDeg << "°, ior " << ior << ": exact shift for this camera";
+  }
+  std::printf(
+      "[analytic] Snell slab θ=%.0f° t=%.2f ior %.4f: shift %.4f (%.2f px), closed form %.4f (%.2f px), "
+      "exact for this camera %.2f px; one pixel = %.4f\n",
+      thetaDeg, t, ior, measured, shiftPx, expected, expected / pixel, traced, pixel);
 }
 
-TEST(AnalyticRefraction, SlabAt40DegreesShiftsLineBySnell) {
-  expectSnellShift(40);
-}
-TEST(AnalyticRefraction, SlabAt60DegreesShiftsLineBySnell) {
-  expectSnellShift(60);
-}
+TEST(AnalyticRefraction, SlabAt40DegreesShiftsLineBySnell) { expectSnellShift(40, 1.5, false); }
+TEST(AnalyticRefraction, SlabAt60DegreesShiftsLineBySnell) { expectSnellShift(60, 1.5, false); }
 
-} // namespace
-} // namespace rayster::test::analytic
+// The G-buffer stores the first surface's ior in 7 bits (1 + k/63.5), the bounce loop reads the
+// exact ior at every later hit. 1 + 32/63.5 is stored exactly, so both faces bend alike and the
+// image lands where exact ray optics puts it.
+TEST(AnalyticRefraction, SlabShiftMatchesExactRayOpticsAtStorableIor) { expectSnellShift(60, 1.0 + 32.0 / 63.5, true); }
+
+// DISABLED: renderer bug. At ior 1.5 the slab enters with the G-buffer's quantised ior 1.5039
+// (packIor in shaders/lib/surface.glsl, material.w of an RGBA8 target) and leaves with the
+// material's exact 1.5, so a parallel slab acts as a 0.25° prism at 60° incidence: measured
+// 10.69 px against 10.01 px of exact optics (40°: 5.76 against 5.41 px). Exact optics with those
+// two iors give 10.69 and 5.75 px: the quantisation accounts for the whole error. The fix (more
+// bits for the ior, or the exact material at the first hit) is outside the specular shader.
+TEST(AnalyticRefraction, DISABLED_SlabShiftMatchesExactRayOpticsAtIor150) { expectSnellShift(60, 1.5, true); }
+
+}  // namespace
+}  // namespace rayster::test::analytic
