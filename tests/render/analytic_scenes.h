@@ -1,0 +1,239 @@
+#pragma once
+// Building blocks for the analytic render tests (test_analytic.cpp): unit meshes written as glTF
+// with one material each, a scene file that places them, the camera's pixel rays (to know which
+// world point a pixel shows), and a render that returns the linear HDR image and AOVs.
+// Everything goes through the public interfaces only: scene-file syntax, CLI flags, AOV names.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <glm/glm.hpp>
+
+#include "core/image.h"
+#include "core/image_io.h"
+#include "core/metrics.h"
+#include "tests/render/fixtures.h"
+#include "tests/render/run_rayster.h"
+
+namespace rayster::test::analytic {
+
+// glTF metallic-roughness material with the extensions the renderer reads.
+struct MaterialSpec {
+  glm::vec3 baseColor{0.8f};
+  float metallic = 0.0f;
+  float roughness = 1.0f;
+  glm::vec3 emissive{0.0f};  // linear radiance, any magnitude (split into factor × strength)
+  float transmission = 0.0f;
+  float ior = 1.5f;
+  float thickness = 0.0f;  // > 0: a volume (refracts through its back face); 0: thin-walled
+};
+
+inline MaterialSpec blackAbsorber() { return {glm::vec3(0.0f), 1.0f, 1.0f}; }  // black rough metal: reflects nothing
+inline MaterialSpec emitter(float radiance) {
+  MaterialSpec m = blackAbsorber();
+  m.emissive = glm::vec3(radiance);
+  return m;
+}
+inline MaterialSpec glass(float ior, float thickness) {
+  MaterialSpec m{glm::vec3(1.0f), 0.0f, 0.0f};
+  m.transmission = 1.0f;
+  m.ior = ior;
+  m.thickness = thickness;
+  return m;
+}
+
+struct Mesh {
+  std::vector<float> positions, normals;  // xyz per vertex
+  std::vector<uint32_t> indices;          // counter-clockwise seen from the side the normal points to
+};
+
+// The unit square [-0.5, 0.5]² in the plane z = 0, facing +Z.
+inline Mesh unitQuad() {
+  return {{-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0.5f, 0.5f, 0, -0.5f, 0.5f, 0},
+          {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1},
+          {0, 1, 2, 0, 2, 3}};
+}
+
+// The unit cube [-0.5, 0.5]³, closed, every face wound outward (the bounce loop tells entering
+// from leaving a volume by the winding).
+inline Mesh unitBox() {
+  Mesh m;
+  const glm::vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (int a = 0; a < 3; ++a)
+    for (float sign : {1.0f, -1.0f}) {
+      glm::vec3 n = axes[a] * sign, u = axes[(a + 1) % 3], v = glm::cross(n, u);
+      uint32_t base = uint32_t(m.positions.size() / 3);
+      for (glm::vec2 c : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
+        glm::vec3 p = 0.5f * (n + c.x * u + c.y * v);
+        m.positions.insert(m.positions.end(), {p.x, p.y, p.z});
+        m.normals.insert(m.normals.end(), {n.x, n.y, n.z});
+      }
+      m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+  return m;
+}
+
+inline std::string vec3Json(glm::vec3 v) { return fmt::format("[{}, {}, {}]", v.x, v.y, v.z); }
+
+// Writes dir/name.gltf: one mesh, one material, the buffer embedded as a data URI.
+inline void writeGltf(const std::filesystem::path& dir, const std::string& name, const Mesh& mesh,
+                      const MaterialSpec& mat) {
+  std::vector<uint8_t> buf;
+  appendBytes(buf, mesh.positions);
+  appendBytes(buf, mesh.normals);
+  appendBytes(buf, mesh.indices);
+  const size_t vertexBytes = mesh.positions.size() * 4, vertices = mesh.positions.size() / 3;
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (size_t i = 0; i < vertices; ++i) {
+    glm::vec3 p(mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2]);
+    lo = glm::min(lo, p), hi = glm::max(hi, p);
+  }
+  const float peak = std::max(mat.emissive.x, std::max(mat.emissive.y, mat.emissive.z));
+  const glm::vec3 emissiveFactor = peak > 0 ? mat.emissive / peak : glm::vec3(0.0f);
+  std::string extensions =
+      fmt::format(R"("KHR_materials_emissive_strength": {{"emissiveStrength": {}}})", peak > 0 ? peak : 1.0f);
+  if (mat.transmission > 0)
+    extensions += fmt::format(
+        R"(, "KHR_materials_transmission": {{"transmissionFactor": {}}}, "KHR_materials_ior": {{"ior": {}}})",
+        mat.transmission, mat.ior);
+  if (mat.thickness > 0)
+    extensions += fmt::format(R"(, "KHR_materials_volume": {{"thicknessFactor": {}}})", mat.thickness);
+  std::string json = fmt::format(
+      R"({{
+  "asset": {{"version": "2.0"}},
+  "extensionsUsed": ["KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume"],
+  "scene": 0, "scenes": [{{"nodes": [0]}}], "nodes": [{{"mesh": 0, "name": "{0}"}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "NORMAL": 1}}, "indices": 2, "material": 0}}]}}],
+  "materials": [{{"name": "{0}", "doubleSided": true, "emissiveFactor": {1},
+    "pbrMetallicRoughness": {{"baseColorFactor": [{2}, {3}, {4}, 1], "metallicFactor": {5}, "roughnessFactor": {6}}},
+    "extensions": {{{7}}}}}],
+  "buffers": [{{"byteLength": {8}, "uri": "data:application/octet-stream;base64,{9}"}}],
+  "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": {10}}}, {{"buffer": 0, "byteOffset": {10}, "byteLength": {10}}},
+                  {{"buffer": 0, "byteOffset": {11}, "byteLength": {12}}}],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": {13}, "type": "VEC3", "min": {14}, "max": {15}}},
+    {{"bufferView": 1, "componentType": 5126, "count": {13}, "type": "VEC3"}},
+    {{"bufferView": 2, "componentType": 5125, "count": {16}, "type": "SCALAR"}}]
+}})",
+      name, vec3Json(emissiveFactor), mat.baseColor.x, mat.baseColor.y, mat.baseColor.z, mat.metallic, mat.roughness,
+      extensions, buf.size(), base64(buf), vertexBytes, 2 * vertexBytes, mesh.indices.size() * 4, vertices,
+      vec3Json(lo), vec3Json(hi), mesh.indices.size());
+  std::ofstream(dir / (name + ".gltf")) << json;
+}
+
+// One model of a scene file: a unit mesh scaled, rotated (degrees, R = Rz·Ry·Rx), translated.
+struct Placed {
+  std::string name;
+  Mesh mesh;
+  MaterialSpec material;
+  glm::vec3 scale{1.0f}, rotate{0.0f}, translate{0.0f};
+};
+
+struct CameraSpec {
+  glm::vec3 position{0, 0, 5}, target{0, 0, 0};
+  float yfovDeg = 40.0f;
+};
+
+struct SceneSpec {
+  std::vector<Placed> models;
+  std::vector<std::string> lights;  // scene-file light objects, as JSON
+  CameraSpec camera;
+  std::string environment = R"("black")";
+};
+
+// A light that is there only so the loader adds no default sun: it emits nothing.
+inline std::string darkLight() { return R"({"type": "point", "position": [0, 100, 0], "intensity": 0})"; }
+// A uniform environment of radiance `L` in every direction (the procedural sky, one colour).
+inline std::string uniformEnvironment(float L) {
+  return fmt::format(
+      R"({{"sky": {{"zenith": [1, 1, 1], "horizon": [1, 1, 1], "ground": [1, 1, 1]}}, "intensity": {}}})", L);
+}
+
+inline std::filesystem::path writeScene(const std::filesystem::path& dir, const std::string& name, const SceneSpec& s) {
+  std::string models, lights;
+  for (const Placed& m : s.models) {
+    writeGltf(dir, m.name, m.mesh, m.material);
+    models +=
+        fmt::format(R"({}{{"path": "{}.gltf", "scale": {}, "rotate": {}, "translate": {}}})",
+                    models.empty() ? "" : ", ", m.name, vec3Json(m.scale), vec3Json(m.rotate), vec3Json(m.translate));
+  }
+  for (const std::string& l : s.lights) lights += (lights.empty() ? "" : ", ") + l;
+  auto path = dir / (name + ".json");
+  std::ofstream(path) << fmt::format(
+      R"({{"models": [{}], "lights": [{}], "environment": {},
+  "cameras": [{{"name": "test", "position": {}, "target": {}, "yfov": {}, "znear": 0.05, "zfar": 200}}]}})",
+      models, lights, s.environment, vec3Json(s.camera.position), vec3Json(s.camera.target), s.camera.yfovDeg);
+  return path;
+}
+
+// The world-space ray through the centre of pixel (x, y) (top row first), for the camera model of
+// the scene format: look-at with +Y up, vertical field of view, square pixels.
+struct Ray {
+  glm::vec3 origin, dir;
+};
+inline Ray pixelRay(const CameraSpec& c, int width, int height, double x, double y) {
+  const glm::vec3 forward = glm::normalize(c.target - c.position);
+  const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+  const glm::vec3 up = glm::cross(right, forward);
+  const float t = std::tan(glm::radians(c.yfovDeg) * 0.5f), aspect = float(width) / float(height);
+  const float ndcX = float((x + 0.5) / width * 2 - 1), ndcY = float((y + 0.5) / height * 2 - 1);
+  return {c.position, glm::normalize(forward + right * (ndcX * t * aspect) - up * (ndcY * t))};
+}
+
+// Where a pixel's ray meets the plane y = height (false if it does not, going forward).
+inline bool hitHorizontal(const Ray& r, float height, glm::vec3& p) {
+  if (std::abs(r.dir.y) < 1e-6f) return false;
+  float s = (height - r.origin.y) / r.dir.y;
+  p = r.origin + s * r.dir;
+  return s > 0;
+}
+
+struct Rendered {
+  ImageF hdr;
+  std::map<std::string, ImageF> aovs;
+};
+
+// Renders `scene` with the real binary (validation on), reads the linear HDR image (EXR) and the
+// AOVs' EXRs, and fails the test on any error or an empty (non-finite, uniform, wrong-size) HDR.
+inline Rendered renderHdr(const std::filesystem::path& dir, const std::string& name, const std::filesystem::path& scene,
+                          int w, int h, int frames, const std::string& aovs = "", const std::string& extra = "") {
+  Rendered out;
+  auto png = dir / (name + ".png");
+  auto exr = dir / (name + ".exr");
+  std::string args = fmt::format("render {} --size {}x{} --frames {} --seed 7 --hdr {} -o {} {}", scene.string(), w, h,
+                                 frames, exr.string(), png.string(), extra);
+  if (!aovs.empty()) args += " --aov " + aovs;
+  RunResult r = runRayster(args);
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  auto hdr = readExr(exr);
+  EXPECT_TRUE(hdr.ok()) << (hdr.ok() ? "" : hdr.error().message);
+  if (!hdr.ok()) return out;
+  auto empty = rejectEmpty(*hdr, w, h);
+  EXPECT_FALSE(empty.has_value()) << name << ": " << empty.value_or("");
+  out.hdr = std::move(hdr).value();
+  size_t start = 0;
+  while (!aovs.empty() && start <= aovs.size()) {
+    size_t comma = aovs.find(',', start);
+    std::string aov = aovs.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    auto img = readExr(dir / (name + "." + aov + ".exr"));
+    EXPECT_TRUE(img.ok()) << aov << ": " << (img.ok() ? "" : img.error().message);
+    if (img.ok()) {
+      EXPECT_EQ(img->width, w);
+      EXPECT_EQ(img->height, h);
+      size_t nonFinite = 0;
+      for (float v : img->rgba) nonFinite += !std::isfinite(v);
+      EXPECT_EQ(nonFinite, 0u) << aov << " has non-finite values";
+      out.aovs[aov] = std::move(img).value();
+    }
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+}  // namespace rayster::test::analytic
