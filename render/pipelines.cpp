@@ -51,7 +51,7 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   specular.miss = {"primary.rmiss", "shadow.rmiss"};  // radiance rays miss 0, shadow rays miss 1
   specular.hitGroups = primary.hitGroups;
   specular.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
-                       {6, kStorage}};
+                       {6, kStorage}, {7, kSampled}};
   specular.globalSet = textures;
   p.specular = rhi::RayTracingPipeline(ctx, specular);
 

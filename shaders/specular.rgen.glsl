@@ -25,6 +25,7 @@ layout(set = 0, binding = 3) uniform sampler2D normalTex;
 layout(set = 0, binding = 4) uniform sampler2D albedoTex;
 layout(set = 0, binding = 5) uniform sampler2D materialTex;
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D outSpecular;
+layout(set = 0, binding = 7) uniform sampler2D emissiveTex;  // .a: the first surface's exact ior
 
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
 layout(location = 1) rayPayloadEXT uint visible;
@@ -105,6 +106,8 @@ void main() {
   float ior;
   bool thin;
   unpackIor(mat.a, ior, thin);
+  // Entering with the 7-bit ior and leaving with the exact one would make a slab a prism.
+  ior = texelFetch(emissiveTex, px, 0).a;
   uint rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kSpecularStream);
 
   vec3 dir = normalize(p - frame.cameraPosition.xyz);

@@ -35,7 +35,7 @@ struct GBuffer {
   graph::ImageHandle normals;   // RGBA16_SNORM: oct shading normal, oct geometric normal
   graph::ImageHandle albedo;    // RGBA8: sRGB-encoded base colour
   graph::ImageHandle material;  // RGBA8: roughness, metallic, transmission, flags
-  graph::ImageHandle emissive;  // RGBA16F
+  graph::ImageHandle emissive;  // RGBA16F: emitted radiance; .a the exact ior
   graph::ImageHandle id;        // R32_UINT instance row, kBackgroundId for sky
   // RG16F uvCurrent − uvPrevious (unjittered; TECHNIQUES.md §2): the history of a pixel is at
   // uv − motion. Camera and object motion for geometry; 0 on the background, whose (camera)

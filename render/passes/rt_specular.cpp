@@ -13,7 +13,7 @@ graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& i
   graph.addPass(
       "rt-specular",
       [&](graph::PassBuilder& b) {
-        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material}) b.read(h, graph::Use::SampledRayTracing);
+        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive}) b.read(h, graph::Use::SampledRayTracing);
         b.write(out, graph::Use::StorageWriteRayTracing);
       },
       [gb, out, &in](graph::PassContext& pc) {
@@ -28,6 +28,7 @@ graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& i
             .sampledImage(4, pc.image(gb.albedo).view(), s)
             .sampledImage(5, pc.image(gb.material).view(), s)
             .storageImage(6, pc.image(out).view())
+            .sampledImage(7, pc.image(gb.emissive).view(), s)
             .push(pc.cmd, pipe);
         bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.layout());
         pipe.trace(pc.cmd, in.size.width, in.size.height);

@@ -81,7 +81,7 @@ GBufferValues evaluateSurface(MaterialRecord m, SurfacePoint sp, vec3 cameraPos)
   o.normals = vec4(octEncode(ns), octEncode(ng));
   o.albedo = vec4(linearToSrgb(base.rgb), ao);
   o.material = vec4(roughness, metallic, m.transmission, packIor(m.ior, m.thickness <= 0.0));
-  o.emissive = vec4(emissive, 0.0);
+  o.emissive = vec4(emissive, m.ior);  // the exact ior (fp16): material.a holds only 7 bits of it
   return o;
 }
 

@@ -407,18 +407,11 @@ void expectSnellShift(double thetaDeg, double ior, bool strict) {
 TEST(AnalyticRefraction, SlabAt40DegreesShiftsLineBySnell) { expectSnellShift(40, 1.5, false); }
 TEST(AnalyticRefraction, SlabAt60DegreesShiftsLineBySnell) { expectSnellShift(60, 1.5, false); }
 
-// The G-buffer stores the first surface's ior in 7 bits (1 + k/63.5), the bounce loop reads the
-// exact ior at every later hit. 1 + 32/63.5 is stored exactly, so both faces bend alike and the
-// image lands where exact ray optics puts it.
+// The G-buffer's material target holds the ior in 7 bits; the bounce loop takes the exact one from
+// the emissive target's alpha. Entering with 1.5039 and leaving with 1.5 made a parallel slab a
+// 0.25° prism at 60° (10.69 px against 10.01 px of exact optics) before that fix.
 TEST(AnalyticRefraction, SlabShiftMatchesExactRayOpticsAtStorableIor) { expectSnellShift(60, 1.0 + 32.0 / 63.5, true); }
-
-// DISABLED: renderer bug. At ior 1.5 the slab enters with the G-buffer's quantised ior 1.5039
-// (packIor in shaders/lib/surface.glsl, material.w of an RGBA8 target) and leaves with the
-// material's exact 1.5, so a parallel slab acts as a 0.25° prism at 60° incidence: measured
-// 10.69 px against 10.01 px of exact optics (40°: 5.76 against 5.41 px). Exact optics with those
-// two iors give 10.69 and 5.75 px: the quantisation accounts for the whole error. The fix (more
-// bits for the ior, or the exact material at the first hit) is outside the specular shader.
-TEST(AnalyticRefraction, DISABLED_SlabShiftMatchesExactRayOpticsAtIor150) { expectSnellShift(60, 1.5, true); }
+TEST(AnalyticRefraction, SlabShiftMatchesExactRayOpticsAtIor150) { expectSnellShift(60, 1.5, true); }
 
 }  // namespace
 }  // namespace rayster::test::analytic
