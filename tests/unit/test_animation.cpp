@@ -35,7 +35,8 @@ void addBoxMesh(Doc& d) {
   const int p = d.floats(pos, "VEC3", 3), n = d.floats(nrm, "VEC3", 3);
   const int i = d.accessor(d.view(idx), kUShort, idx.size(), "SCALAR");
   d.j["meshes"] = Json::array(
-      {{{"name", "box"}, {"primitives", Json::array({{{"attributes", {{"POSITION", p}, {"NORMAL", n}}}, {"indices", i}}})}}});
+      {{{"name", "box"},
+        {"primitives", Json::array({{{"attributes", {{"POSITION", p}, {"NORMAL", n}}}, {"indices", i}}})}}});
 }
 
 // Adds a sampler and a channel to animation `animation` (created when missing).
