@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/log.h"
+#include "scene/animation.h"
 #include "scene/gltf_loader.h"
 
 namespace {
@@ -33,6 +34,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data), std::streamsize(size));
   }
-  (void)rayster::scene::loadGltf(path);
+  rayster::Result<rayster::scene::Scene> scene = rayster::scene::loadGltf(path);
+  // Whatever the loader accepts must also play: sample before, inside and after the keys.
+  if (scene.ok() && scene->animated())
+    for (float t : {-1.0f, 0.0f, 0.5f, 1.7f, 1e6f}) rayster::scene::evaluateAnimations(*scene, t, t > 1.0f);
   return 0;
 }

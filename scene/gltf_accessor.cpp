@@ -212,6 +212,15 @@ Result<std::vector<glm::vec<N, float>>> readVectors(const tinygltf::Model& model
 
 } // namespace
 
+Result<std::vector<float>> readScalars(const tinygltf::Model& model, int accessor, const std::string& file) {
+  Result<std::vector<glm::vec<1, float>>> values = readVectors<1>(model, accessor, TINYGLTF_TYPE_SCALAR, file);
+  if (!values) return values.error();
+  std::vector<float> out;
+  out.reserve(values->size());
+  for (const glm::vec<1, float>& v : *values) out.push_back(v.x);
+  return out;
+}
+
 Result<std::vector<glm::vec2>> readVec2(const tinygltf::Model& model, int accessor, const std::string& file) {
   return readVectors<2>(model, accessor, TINYGLTF_TYPE_VEC2, file);
 }

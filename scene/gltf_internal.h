@@ -52,6 +52,7 @@ bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::
 
 // ---- gltf_accessor.cpp: bounds-checked accessor reads ----
 
+Result<std::vector<float>> readScalars(const tinygltf::Model& model, int accessor, const std::string& file);
 Result<std::vector<glm::vec2>> readVec2(const tinygltf::Model& model, int accessor, const std::string& file);
 Result<std::vector<glm::vec3>> readVec3(const tinygltf::Model& model, int accessor, const std::string& file);
 Result<std::vector<glm::vec4>> readVec4(const tinygltf::Model& model, int accessor, const std::string& file);
@@ -70,6 +71,14 @@ Result<Mesh> convertMesh(MeshBuilder& builder, int meshIndex);
 // ---- gltf_materials.cpp: images, samplers, textures and materials, in glTF order ----
 
 Status convertMaterials(const tinygltf::Model& model, const std::string& file, Scene& scene);
+
+// ---- gltf_animations.cpp ----
+
+// Reads model.animations into scene.animations. `sceneNodeOf` maps glTF node indices to
+// Scene::nodes (-1: not in the displayed scene; channels on those are dropped). Afterwards only
+// instances under an animated node keep their Instance::node.
+Status convertAnimations(const tinygltf::Model& model, const std::string& file, const std::vector<int>& sceneNodeOf,
+                         Scene& scene);
 
 // A number from a tinygltf Value (extras, extensions), or `fallback` when absent or not a number.
 double numberOr(const tinygltf::Value& object, const char* key, double fallback);

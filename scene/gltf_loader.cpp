@@ -92,24 +92,26 @@ Result<tinygltf::Model> parse(const fs::path& path, const std::string& file) {
   return model;
 }
 
-Result<glm::mat4> localTransform(const tinygltf::Node& node, size_t index, const std::string& file) {
-  glm::mat4 m(1.0f);
-  if (node.matrix.size() == 16) {
-    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = float(node.matrix[size_t(i)]); // column-major, as glm
+// The node's local transform as glTF gives it: a matrix, or TRS with a normalised rotation.
+Result<SceneNode> convertNode(const tinygltf::Node& src, size_t index, const std::string& file) {
+  SceneNode node;
+  node.name = src.name.empty() ? fmt::format("node{}", index) : src.name;
+  if (src.matrix.size() == 16) {
+    node.hasMatrix = true;
+    for (int i = 0; i < 16; ++i) glm::value_ptr(node.matrix)[i] = float(src.matrix[size_t(i)]); // column-major, as glm
   } else {
-    glm::vec3 t(0.0f), s(1.0f);
-    glm::quat r(1.0f, 0.0f, 0.0f, 0.0f);
-    if (node.translation.size() == 3) t = glm::vec3(node.translation[0], node.translation[1], node.translation[2]);
-    if (node.scale.size() == 3) s = glm::vec3(node.scale[0], node.scale[1], node.scale[2]);
-    if (node.rotation.size() == 4) { // glTF stores x, y, z, w
-      r = glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2]));
+    if (src.translation.size() == 3)
+      node.translation = glm::vec3(src.translation[0], src.translation[1], src.translation[2]);
+    if (src.scale.size() == 3) node.scale = glm::vec3(src.scale[0], src.scale[1], src.scale[2]);
+    if (src.rotation.size() == 4) { // glTF stores x, y, z, w
+      glm::quat r(float(src.rotation[3]), float(src.rotation[0]), float(src.rotation[1]), float(src.rotation[2]));
       const float length = glm::length(r);
       if (length > 0.0f && std::isfinite(length)) r /= length; // exporters round; a skewing matrix helps no one
+      node.rotation = r;
     }
-    m = glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(r) * glm::scale(glm::mat4(1.0f), s);
   }
-  if (!finite(m)) return bad(file, "node {} has a non-finite transform", index);
-  return m;
+  if (!finite(node.parentFromNode())) return bad(file, "node {} has a non-finite transform", index);
+  return node;
 }
 
 Status addCamera(const tinygltf::Model& model, const tinygltf::Node& node, const glm::mat4& world, Scene& scene,
@@ -216,26 +218,36 @@ Result<std::vector<int>> rootNodes(const tinygltf::Model& model, const std::stri
   return roots;
 }
 
-Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene& scene) {
+// Walks the default scene's hierarchy into Scene::nodes (parents first), instances, cameras and
+// lights. sceneNodeOf[glTF node] is its index in Scene::nodes, -1 where it is not reached.
+Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene& scene,
+                    std::vector<int>& sceneNodeOf) {
   Result<std::vector<int>> roots = rootNodes(model, file);
   if (!roots) return roots.error();
   MeshBuilder meshes{model, file, scene, std::nullopt};
   std::vector<int> meshMap(model.meshes.size(), -1);
-  std::vector<bool> visited(model.nodes.size(), false);
+  sceneNodeOf.assign(model.nodes.size(), -1);
   bool warnedSkin = false;
-  // Explicit stack: hierarchies can be deep, and a hostile file must not overflow ours.
-  std::vector<std::pair<int, glm::mat4>> stack;
-  for (auto it = roots->rbegin(); it != roots->rend(); ++it) stack.emplace_back(*it, glm::mat4(1.0f));
+  // Explicit stack of (glTF node, parent in Scene::nodes): hierarchies can be deep, and a hostile
+  // file must not overflow ours.
+  std::vector<std::pair<int, int32_t>> stack;
+  for (auto it = roots->rbegin(); it != roots->rend(); ++it) stack.emplace_back(*it, -1);
   while (!stack.empty()) {
-    auto [index, parentWorld] = stack.back();
+    auto [index, parent] = stack.back();
     stack.pop_back();
-    if (visited[size_t(index)]) return bad(file, "node {} is reached twice: the node hierarchy has a cycle", index);
-    visited[size_t(index)] = true;
+    if (sceneNodeOf[size_t(index)] >= 0)
+      return bad(file, "node {} is reached twice: the node hierarchy has a cycle", index);
     const tinygltf::Node& node = model.nodes[size_t(index)];
-    Result<glm::mat4> local = localTransform(node, size_t(index), file);
-    if (!local) return local.error();
-    const glm::mat4 world = parentWorld * *local;
+    Result<SceneNode> converted = convertNode(node, size_t(index), file);
+    if (!converted) return converted.error();
+    converted->parent = parent;
+    const glm::mat4 parentWorld = parent >= 0 ? scene.nodes[size_t(parent)].worldFromNode : glm::mat4(1.0f);
+    const glm::mat4 world = parentWorld * converted->parentFromNode();
     if (!finite(world)) return bad(file, "node {} has a non-finite world transform", index);
+    converted->worldFromNode = world;
+    const int32_t self = int32_t(scene.nodes.size());
+    sceneNodeOf[size_t(index)] = self;
+    scene.nodes.push_back(std::move(*converted));
 
     if (node.mesh >= 0) {
       if (size_t(node.mesh) >= model.meshes.size())
@@ -256,13 +268,14 @@ Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene
         instance.name = node.name.empty() ? fmt::format("node{}", index) : node.name;
         instance.mesh = meshIndex;
         instance.worldFromObject = world;
+        instance.node = self; // reset by convertAnimations() unless the node moves
         scene.instances.push_back(instance);
       }
     }
     if (node.camera >= 0) RAYSTER_TRY(addCamera(model, node, world, scene, file));
     if (int light = nodeLight(node); light != -1) RAYSTER_TRY(addLight(model, node, light, world, scene, file));
     for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
-      stack.emplace_back(*child, world);
+      stack.emplace_back(*child, self);
   }
   return okStatus();
 }
@@ -277,7 +290,9 @@ Result<Scene> loadGltf(const fs::path& path) {
   Scene scene;
   scene.name = path.stem().string();
   RAYSTER_TRY(gltf::convertMaterials(*model, file, scene));
-  RAYSTER_TRY(gltf::convertNodes(*model, file, scene));
+  std::vector<int> sceneNodeOf;
+  RAYSTER_TRY(gltf::convertNodes(*model, file, scene, sceneNodeOf));
+  RAYSTER_TRY(gltf::convertAnimations(*model, file, sceneNodeOf, scene));
 
   // validate() insists on a camera, but a camera-less file is fine here: applyDefaults() frames
   // one later. Check everything else with a stand-in that is removed again.

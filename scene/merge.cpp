@@ -43,9 +43,30 @@ void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
   for (Texture& texture : src.textures)
     dst.textures.push_back({rebase(texture.image, imageBase), rebase(texture.sampler, samplerBase)});
 
+  // The placement becomes a fixed root above src's hierarchy, so animation re-evaluated later
+  // keeps the model where the scene file put it.
+  if (!src.nodes.empty()) {
+    SceneNode placement;
+    placement.name = src.name.empty() ? std::string("placement") : src.name;
+    placement.hasMatrix = true;
+    placement.matrix = placement.worldFromNode = transform;
+    dst.nodes.push_back(std::move(placement));
+  }
+  const size_t nodeBase = dst.nodes.size();
+  for (SceneNode& node : src.nodes) {
+    node.parent = node.parent >= 0 ? int32_t(rebase(uint32_t(node.parent), nodeBase)) : int32_t(nodeBase) - 1;
+    node.worldFromNode = transform * node.worldFromNode;
+    dst.nodes.push_back(std::move(node));
+  }
+  for (Animation& animation : src.animations) {
+    for (AnimationChannel& channel : animation.channels) channel.node = rebase(channel.node, nodeBase);
+    dst.animations.push_back(std::move(animation));
+  }
+
   for (Instance& instance : src.instances) {
     instance.mesh = rebase(instance.mesh, meshBase);
     instance.worldFromObject = transform * instance.worldFromObject;
+    if (instance.node >= 0) instance.node = int32_t(rebase(uint32_t(instance.node), nodeBase));
     dst.instances.push_back(std::move(instance));
   }
 

@@ -45,6 +45,27 @@ Status validatePrimitive(const Scene& scene, const Mesh& mesh, size_t meshIndex,
   return okStatus();
 }
 
+Status validateAnimation(const Scene& scene, const std::string& sceneName) {
+  for (size_t i = 0; i < scene.nodes.size(); ++i)
+    if (scene.nodes[i].parent >= int32_t(i) || scene.nodes[i].parent < -1)
+      return makeError(ExitCode::BadInput, "{}: node {} '{}' has parent {}, which does not come before it", sceneName,
+                       i, scene.nodes[i].name, scene.nodes[i].parent);
+  for (size_t i = 0; i < scene.instances.size(); ++i)
+    if (scene.instances[i].node >= int32_t(scene.nodes.size()) || scene.instances[i].node < -1)
+      return makeError(ExitCode::BadInput, "{}: instance {} '{}' follows node {} ({} nodes)", sceneName, i,
+                       scene.instances[i].name, scene.instances[i].node, scene.nodes.size());
+  for (const Animation& animation : scene.animations)
+    for (size_t c = 0; c < animation.channels.size(); ++c) {
+      const AnimationChannel& channel = animation.channels[c];
+      const size_t per = channel.interp == AnimationChannel::CubicSpline ? 3 : 1;
+      if (channel.node >= scene.nodes.size() || channel.times.empty() ||
+          channel.values.size() != per * channel.times.size())
+        return makeError(ExitCode::BadInput, "{}: animation '{}' channel {} has a bad node or key count", sceneName,
+                         animation.name, c);
+    }
+  return okStatus();
+}
+
 } // namespace
 
 void Aabb::extend(glm::vec3 p) {
@@ -119,6 +140,7 @@ Status validate(const Scene& scene) {
       return makeError(ExitCode::BadInput, "{}: instance {} '{}' has a non-finite transform", sceneName, i,
                        instance.name);
   }
+  RAYSTER_TRY(validateAnimation(scene, sceneName));
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& light = scene.lights[i];
     if (!finite(light.position) || !finite(light.direction) || !finite(light.color) ||

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "core/error.h"
 
@@ -100,6 +101,44 @@ struct Instance {
   uint32_t mesh = 0;
   glm::mat4 worldFromObject{1.0f};
   bool castsShadows = true; // false for the visible shape of an area light
+  // The node (index into Scene::nodes) whose world transform this instance takes when animations
+  // are evaluated; -1: static. Loaders set it only where an animation moves the node or a parent,
+  // so a renderer can refit just these instances.
+  int32_t node = -1;
+};
+
+// A node of the glTF hierarchy, kept so that animation can recompute instance transforms.
+// Scene::nodes lists parents before their children (parent < own index), so one forward pass
+// computes every world matrix.
+struct SceneNode {
+  std::string name;
+  int32_t parent = -1; // index into Scene::nodes; -1: a root
+  // Local transform: TRS as glTF gives it, or a fixed matrix (glTF forbids animating those).
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f}; // w, x, y, z; unit length
+  glm::vec3 scale{1.0f};
+  bool hasMatrix = false;
+  glm::mat4 matrix{1.0f};
+  glm::mat4 worldFromNode{1.0f}; // as of the last load or evaluateAnimations()
+
+  glm::mat4 parentFromNode() const; // the local transform as a matrix
+};
+
+// One animated property of one node, sampled as glTF 2.0 says.
+struct AnimationChannel {
+  uint32_t node = 0; // index into Scene::nodes
+  enum Path { Translation, Rotation, Scale } path = Translation;
+  enum Interp { Step, Linear, CubicSpline } interp = Linear;
+  std::vector<float> times; // seconds, strictly increasing, >= 0
+  // One value per key (xyz for translation and scale, quaternion xyzw for rotation, as glTF
+  // stores it); CubicSpline holds in-tangent, value, out-tangent for each key, 3 × times.size().
+  std::vector<glm::vec4> values;
+};
+
+struct Animation {
+  std::string name;
+  std::vector<AnimationChannel> channels;
+  float duration = 0.0f; // seconds: the last key time over all channels
 };
 
 enum class LightType { Point, Spot, Directional };
@@ -161,6 +200,8 @@ struct Scene {
   std::vector<Sampler> samplers;
   std::vector<Texture> textures;
   std::vector<Instance> instances;
+  std::vector<SceneNode> nodes;      // the hierarchy behind animated instances; may be empty
+  std::vector<Animation> animations; // all play together (see scene/animation.h)
   std::vector<Light> lights;
   std::vector<Camera> cameras;
   std::vector<CameraKey> cameraPath;
@@ -169,6 +210,7 @@ struct Scene {
 
   Aabb bounds() const; // world-space, over all instances
   size_t triangleCount() const; // over all instances, i.e. what the TLAS holds
+  bool animated() const { return !animations.empty(); }
 };
 
 // Checks what the renderer would otherwise crash on or silently mis-draw. Failures are
