@@ -59,6 +59,9 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"raster", "rt", "auto"}));
   render->add_option("--exposure", ro.settings.exposureEv, "Exposure in EV stops (default 0)");
   render->add_option("--camera", ro.settings.camera, "Camera name from the scene");
+  render->add_option("--time", ro.settings.time, "Animation time of the first frame, in seconds (default 0)");
+  render->add_flag("--pause{false}", ro.settings.animate,
+                   "Hold glTF animations at --time instead of playing them at --path-fps");
   render->add_option("--shadow-lights", ro.settings.shadowLights,
                      "Lights with their own shadow layer (0-8, default 8); a scene with more lights picks one "
                      "light per pixel by importance instead")

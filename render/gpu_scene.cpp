@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -116,7 +117,9 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   for (uint32_t i = 0; i < scene.instances.size(); ++i) {
     const scene::Instance& inst = scene.instances[i];
     const scene::Mesh& mesh = scene.meshes[inst.mesh];
+    gs.instanceRowOf.push_back(-1);
     if (mesh.primitives.empty() && mesh.spheres.empty()) continue;  // nothing to trace or draw
+    gs.instanceRowOf.back() = int32_t(instanceRows.size());
     const uint32_t mask = gpu::kMaskVisible | (inst.castsShadows ? gpu::kMaskCastsShadow : 0u);
     const uint32_t row = uint32_t(instanceRows.size());
     instanceRows.push_back({inst.worldFromObject, glm::inverseTranspose(inst.worldFromObject),
@@ -148,7 +151,15 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   if (lightRows.empty()) lightRows.push_back({});  // a buffer must not be empty
 
   gs.geometries = tableBuffer(ctx, geometryRows, "geometries");
-  gs.instances = tableBuffer(ctx, instanceRows, "instances");
+  if (scene.animated()) {
+    // Rewritten by the host every frame while instances move (frames are serialised).
+    gs.instances = rhi::Buffer(ctx, instanceRows.size() * sizeof(gpu::InstanceRecord), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               rhi::MemoryUsage::Upload, "instances");
+    std::memcpy(gs.instances.mapped(), instanceRows.data(), instanceRows.size() * sizeof(gpu::InstanceRecord));
+    gs.instanceRecords = instanceRows;
+  } else {
+    gs.instances = tableBuffer(ctx, instanceRows, "instances");
+  }
   gs.lights = tableBuffer(ctx, lightRows, "lights");
   gs.uploadMs = msSince(t0);
 

@@ -15,6 +15,7 @@
 #include "rhi/bindless.h"
 #include "rhi/resources.h"
 #include "scene/scene.h"
+#include "shaders/shared/types.h"
 
 namespace rayster::render {
 
@@ -43,6 +44,10 @@ struct GpuScene {
   rhi::Tlas tlas;
   std::vector<VkAccelerationStructureInstanceKHR> tlasInstances;  // as built; updated when instances move
   std::vector<Draw> draws;  // raster: one per (instance, primitive or sphere set)
+  // Animated scenes: the CPU copy of the instance table (its buffer is host-visible then), and for
+  // each scene instance its row (-1: nothing to draw) — the row is also its TLAS instance index.
+  std::vector<gpu::InstanceRecord> instanceRecords;
+  std::vector<int32_t> instanceRowOf;
   uint32_t lightCount = 0;
   bool anyAlphaTested = false;  // MASK or BLEND somewhere: rays may not be forced opaque
   uint64_t triangleCount = 0;   // over all instances

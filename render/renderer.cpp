@@ -7,6 +7,7 @@
 #include <map>
 #include <tuple>
 
+#include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/half.h"
@@ -19,6 +20,7 @@
 #include "rhi/commands.h"
 #include "rhi/context.h"
 #include "rhi/memory.h"
+#include "scene/animation.h"
 #include "shaders/shared/types.h"
 
 namespace rayster::render {
@@ -86,6 +88,7 @@ struct Renderer::Impl {
   rhi::TimestampPool timers;
   History shadowHistory, specularHistory, directHistory;
   uint32_t frameIndex = 0;
+  scene::Scene pose;  // animated scenes: nodes, instances and animations only, posed each frame
   glm::mat4 prevClipFromWorld{1.0f};  // last frame's unjittered projection, for motion vectors
 
   Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
@@ -134,6 +137,28 @@ struct Renderer::Impl {
     for (int k = 0; k < 9; ++k) fc.irradianceSh[k] = glm::vec4(gpu.environment.irradianceSh[k], 0.0f);
     fc.sceneFlags = gpu.anyAlphaTested ? gpu::kSceneAlphaTested : 0u;
     std::memcpy(constants.mapped(), &fc, sizeof(fc));
+  }
+
+  // Poses an animated scene at `seconds`: the instance table gets the new transforms (the old ones
+  // become prevWorldFromObject, for motion vectors; on the first frame both are the new one) and
+  // the TLAS instances follow. Returns whether anything moved since the last frame.
+  bool poseAnimation(float seconds, bool first) {
+    bool moved = scene::evaluateAnimations(pose, seconds, true);
+    for (size_t i = 0; i < pose.instances.size(); ++i) {
+      const int32_t row = gpu.instanceRowOf[i];
+      if (row < 0) continue;
+      const glm::mat4& m = pose.instances[i].worldFromObject;
+      gpu::InstanceRecord& r = gpu.instanceRecords[row];
+      r.prevWorldFromObject = first ? m : r.worldFromObject;
+      r.worldFromObject = m;
+      r.normalFromObject = glm::inverseTranspose(m);
+      VkTransformMatrixKHR& t = gpu.tlasInstances[row].transform;  // 3x4 row-major
+      for (int rr = 0; rr < 3; ++rr)
+        for (int c = 0; c < 4; ++c) t.matrix[rr][c] = m[c][rr];
+    }
+    std::memcpy(gpu.instances.mapped(), gpu.instanceRecords.data(),
+                gpu.instanceRecords.size() * sizeof(gpu::InstanceRecord));
+    return moved && !first;
   }
 
   void ensureHistory(const RenderSettings& s) {
@@ -221,6 +246,14 @@ struct Renderer::Impl {
     }
 
     ensureHistory(s);
+    const bool animated = scene.animated() && !gpu.instanceRecords.empty();
+    if (animated) {
+      pose.nodes = scene.nodes;
+      pose.instances = scene.instances;
+      pose.animations = scene.animations;
+    }
+    uint32_t accumulated = 0;  // frames in the temporal histories since anything last moved
+    bool movedBefore = false;
     const size_t pixels = size_t(s.width) * s.height;
     rhi::Buffer ldrReadback(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
     rhi::Buffer hdrReadback(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "hdr-readback");
@@ -239,23 +272,33 @@ struct Renderer::Impl {
       const bool last = f + 1 == s.frames;
       graph::RenderGraph graph(&ctx, &transients);
       FrameInputs in{pipelines, gpu, constants, nearest, {s.width, s.height}, gpu.bindless->set()};
+      bool moving = s.cameraPath;
+      if (animated) {
+        const bool moved = poseAnimation(s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0);
+        // Motion vectors of this frame still show last frame's motion after the pose stops.
+        moving = moving || moved || movedBefore;
+        movedBefore = moved;
+        graph.addPass("tlas-update", [](graph::PassBuilder& b) { b.sideEffect(); },
+                      [this](graph::PassContext& pc) { gpu.tlas.update(pc.cmd, gpu.tlasInstances); });
+      }
+      if (moving) accumulated = 0;
 
       GBuffer gb = out.primaryUsed == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
       graph::ImageHandle raw = traceShadows(graph, in, gb, shadowLights());
       graph::ImageHandle prev = shadowHistory.previous(graph, "shadow-history", f);
       graph::ImageHandle next = shadowHistory.next(graph, "shadow-history", f);
       // A moving camera invalidates the history: until reprojection exists, each frame stands alone.
-      graph::ImageHandle visibility = accumulateShadows(graph, in, raw, prev, next, s.cameraPath ? 0 : f);
+      graph::ImageHandle visibility = accumulateShadows(graph, in, raw, prev, next, accumulated);
       graph::ImageHandle specularRaw = traceSpecular(graph, in, gb);
       graph::ImageHandle specularPrev = specularHistory.previous(graph, "specular-history", f);
       graph::ImageHandle specularNext = specularHistory.next(graph, "specular-history", f);
       graph::ImageHandle specular =
-          accumulateRadiance(graph, in, specularRaw, specularPrev, specularNext, s.cameraPath ? 0 : f);
+          accumulateRadiance(graph, in, specularRaw, specularPrev, specularNext, accumulated);
       graph::ImageHandle direct;
       if (manyLights) {
         graph::ImageHandle directRaw = traceDirect(graph, in, gb);
         direct = accumulateRadiance(graph, in, directRaw, directHistory.previous(graph, "direct-history", f),
-                                    directHistory.next(graph, "direct-history", f), s.cameraPath ? 0 : f);
+                                    directHistory.next(graph, "direct-history", f), accumulated);
       }
       graph::ImageHandle hdr = shadeLighting(graph, in, gb, visibility, specular, direct);
       graph::ImageHandle ldr = tonemap(graph, in, hdr, std::exp2(s.exposureEv), s.seed);
@@ -292,6 +335,7 @@ struct Renderer::Impl {
         passTimes[t.name].push_back(t.ms);
       }
       ctx.collectGarbage();
+      ++accumulated;
       if (s.progress) s.progress(f + 1, s.frames);
     }
 

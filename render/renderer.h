@@ -35,7 +35,11 @@ struct RenderSettings {
   bool cameraPath = false;
   // Intermediate images to return (names in aovNames()), read back after the last frame.
   std::vector<std::string> aovs;
-  float pathFps = 60.0f;
+  float pathFps = 60.0f;  // frames per second of camera-path and animation playback
+  // glTF node animations play from `time` seconds, one frame per 1/pathFps, looping; false holds
+  // the pose at `time`.
+  bool animate = true;
+  float time = 0.0f;
   // Called after each frame with (frames done, frames in all), e.g. to show progress.
   std::function<void(uint32_t, uint32_t)> progress;
 };

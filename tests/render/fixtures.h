@@ -134,3 +134,70 @@ inline std::filesystem::path writeEnvironmentSceneFile(const std::filesystem::pa
 }
 
 } // namespace rayster::test
+
+namespace rayster::test {
+
+// A grey floor and a red 1×2 m quad standing on it, facing +Z, that slides from x = −1.5 (t = 0 s)
+// to x = +1.5 (t = 1 s) by a LINEAR translation animation; a hard point light above the camera.
+inline std::filesystem::path writeAnimatedGltf(const std::filesystem::path& dir) {
+  std::vector<float> pos = {-3, 0, -3, 3, 0, -3, 3, 0, 3, -3, 0, 3, -0.5f, 0, 0, 0.5f, 0, 0, 0.5f, 2, 0, -0.5f, 2, 0};
+  std::vector<float> nrm = {0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  std::vector<uint16_t> idx = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7};
+  std::vector<float> times = {0, 1};
+  std::vector<float> moves = {-1.5f, 0, 0, 1.5f, 0, 0};
+  std::vector<uint8_t> buf;
+  appendBytes(buf, pos);    // 0..96
+  appendBytes(buf, nrm);    // 96..192
+  appendBytes(buf, idx);    // 192..216
+  appendBytes(buf, times);  // 216..224
+  appendBytes(buf, moves);  // 224..248
+  std::string json = R"({
+  "asset": {"version": "2.0"},
+  "extensionsUsed": ["KHR_lights_punctual"],
+  "scene": 0,
+  "scenes": [{"nodes": [0, 1, 2, 3]}],
+  "nodes": [
+    {"mesh": 0, "name": "floor"},
+    {"mesh": 1, "name": "slider", "translation": [-1.5, 0, 0]},
+    {"camera": 0, "translation": [0, 1.6, 5.5], "rotation": [-0.0998, 0, 0, 0.995]},
+    {"extensions": {"KHR_lights_punctual": {"light": 0}}, "translation": [0.5, 4, 3]}
+  ],
+  "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.05, "zfar": 50, "aspectRatio": 1.333}}],
+  "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 80, "color": [1, 1, 1]}]}},
+  "meshes": [
+    {"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 2}, "indices": 4, "material": 0}]},
+    {"primitives": [{"attributes": {"POSITION": 1, "NORMAL": 3}, "indices": 5, "material": 1}]}
+  ],
+  "materials": [
+    {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1], "metallicFactor": 0, "roughnessFactor": 1}},
+    {"name": "red", "doubleSided": true,
+     "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.1, 0.05, 1], "metallicFactor": 0, "roughnessFactor": 1}}
+  ],
+  "animations": [{"name": "slide", "channels": [{"sampler": 0, "target": {"node": 1, "path": "translation"}}],
+                  "samplers": [{"input": 6, "output": 7, "interpolation": "LINEAR"}]}],
+  "buffers": [{"byteLength": )" + std::to_string(buf.size()) + R"(, "uri": "data:application/octet-stream;base64,)" +
+                     base64(buf) + R"("}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": 96},
+    {"buffer": 0, "byteOffset": 96, "byteLength": 96},
+    {"buffer": 0, "byteOffset": 192, "byteLength": 24},
+    {"buffer": 0, "byteOffset": 216, "byteLength": 8},
+    {"buffer": 0, "byteOffset": 224, "byteLength": 24}
+  ],
+  "accessors": [
+    {"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-3, 0, -3], "max": [3, 0, 3]},
+    {"bufferView": 0, "byteOffset": 48, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-0.5, 0, 0], "max": [0.5, 2, 0]},
+    {"bufferView": 1, "byteOffset": 0, "componentType": 5126, "count": 4, "type": "VEC3"},
+    {"bufferView": 1, "byteOffset": 48, "componentType": 5126, "count": 4, "type": "VEC3"},
+    {"bufferView": 2, "byteOffset": 0, "componentType": 5123, "count": 6, "type": "SCALAR"},
+    {"bufferView": 2, "byteOffset": 12, "componentType": 5123, "count": 6, "type": "SCALAR"},
+    {"bufferView": 3, "byteOffset": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+    {"bufferView": 4, "byteOffset": 0, "componentType": 5126, "count": 2, "type": "VEC3"}
+  ]
+})";
+  auto path = dir / "animated.gltf";
+  std::ofstream(path) << json;
+  return path;
+}
+
+} // namespace rayster::test

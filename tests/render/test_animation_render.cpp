@@ -1,0 +1,77 @@
+// glTF animations on the GPU: a played frame matches the paused pose at the same time (the
+// instance table and the refitted TLAS follow the animation, for raster and traced primaries,
+// shadows included), and moving instances get motion vectors.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "core/image_io.h"
+#include "tests/render/fixtures.h"
+#include "tests/render/run_rayster.h"
+
+namespace rayster::test {
+namespace {
+
+constexpr int kW = 96, kH = 72;
+
+class AnimationRender : public ::testing::TestWithParam<const char*> {
+ protected:
+  // Hard light, black environment, no TAA: every frame is deterministic, so images compare exactly.
+  std::string args() const { return std::string(" --taa off --primary ") + GetParam(); }
+};
+
+TEST_P(AnimationRender, PlayedFrameMatchesThePausedPose) {
+  auto dir = testDir();
+  auto scene = writeAnimatedGltf(dir).string();
+  // Frame 1 at 1 fps is t = 1 s: the slider at x = +1.5, as the paused pose at --time 1.
+  Image8 played = renderOk(dir, "played", scene + args() + " --frames 2 --path-fps 1", kW, kH);
+  Image8 paused = renderOk(dir, "paused", scene + args() + " --frames 1 --time 1 --pause", kW, kH);
+  Image8 start = renderOk(dir, "start", scene + args() + " --frames 1 --time 0 --pause", kW, kH);
+  ImageDiff same = compare(paused, played, 1);
+  EXPECT_GE(same.fractionWithinTolerance, 0.999) << "max diff " << same.maxChannelDiff;
+  ImageDiff moved = compare(start, played, 8);
+  EXPECT_LT(moved.fractionWithinTolerance, 0.9) << "the slider (and its shadow) should have moved";
+  // The slider is left of centre at t = 0 and right of it at t = 1: its red shows on that side.
+  auto redAt = [](const Image8& img, int x) {
+    const uint8_t* p = img.pixel(x, kH / 2);
+    return p[0] > 2 * p[1] + 30;
+  };
+  EXPECT_TRUE(redAt(start, kW * 3 / 10));
+  EXPECT_FALSE(redAt(start, kW * 7 / 10));
+  EXPECT_TRUE(redAt(played, kW * 7 / 10));
+  EXPECT_FALSE(redAt(played, kW * 3 / 10));
+}
+
+TEST_P(AnimationRender, MovingInstanceHasMotionVectors) {
+  auto dir = testDir();
+  auto scene = writeAnimatedGltf(dir).string();
+  // 10 fps: between frames 4 and 5 the slider moves 0.3 m to the right.
+  RunResult r = runRayster("render " + scene + args() + " --frames 5 --path-fps 10 --aov motion --size " +
+                           std::to_string(kW) + "x" + std::to_string(kH) + " -o " + (dir / "m.png").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  auto mv = readExr(dir / "m.motion.exr");
+  ASSERT_TRUE(mv.ok());
+  auto png = readPng(dir / "m.png");
+  ASSERT_TRUE(png.ok());
+  int red = 0, floor = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const uint8_t* p = png->pixel(x, y);
+      const float* m = mv->pixel(x, y);
+      if (p[0] > 2 * p[1] + 30) {  // the slider: moving right on screen
+        EXPECT_GT(m[0], 0.01f) << x << "," << y;
+        ++red;
+      } else if (y > kH * 9 / 10) {  // the floor near the camera: static
+        EXPECT_EQ(m[0], 0.0f) << x << "," << y;
+        EXPECT_EQ(m[1], 0.0f) << x << "," << y;
+        ++floor;
+      }
+    }
+  EXPECT_GT(red, 50);
+  EXPECT_GT(floor, 50);
+}
+
+INSTANTIATE_TEST_SUITE_P(Producers, AnimationRender, ::testing::Values("raster", "rt"));
+
+} // namespace
+} // namespace rayster::test
