@@ -46,7 +46,7 @@ int run(int argc, char** argv) {
   cli.add_flag("--no-debug-labels", noLabels, "Do not emit debug labels and object names (on by default)");
 
   RenderOptions ro;
-  std::string size = "1280x720", primary = "auto";
+  std::string size = "1280x720", primary = "auto", tonemap = "aces", taa = "on";
   CLI::App* render = cli.add_subcommand("render", "Render a scene to an image, headless");
   render->add_option("scene", ro.scene, "Scene: a .gltf/.glb, .obj or .json scene file, or builtin:NAME (cornell, whitted, spheres, instances[:N]); default builtin:whitted");
   render->add_option("-o,--output", ro.output, "Output image, .png (tonemapped) or .exr (linear HDR)");
@@ -58,6 +58,12 @@ int run(int argc, char** argv) {
   render->add_option("--primary", primary, "G-buffer producer: raster, rt (traced primary rays) or auto")
       ->check(CLI::IsMember({"raster", "rt", "auto"}));
   render->add_option("--exposure", ro.settings.exposureEv, "Exposure in EV stops (default 0)");
+  render->add_option("--tonemap", tonemap, "Tonemap operator: aces (fitted ACES, default) or neutral (Khronos PBR Neutral)")
+      ->check(CLI::IsMember({"aces", "neutral"}));
+  render->add_option("--taa", taa,
+                     "Temporal anti-aliasing with sub-pixel jitter: on (default) or off; a static view converges to a "
+                     "supersampled image over --frames")
+      ->check(CLI::IsMember({"on", "off"}));
   render->add_option("--camera", ro.settings.camera, "Camera name from the scene");
   render->add_option("--time", ro.settings.time, "Animation time of the first frame, in seconds (default 0)");
   render->add_flag("--pause{false}", ro.settings.animate,
@@ -115,6 +121,8 @@ int run(int argc, char** argv) {
     ro.settings.primary = primary == "raster" ? render::Primary::Raster
                           : primary == "rt"   ? render::Primary::Traced
                                               : render::Primary::Auto;
+    ro.settings.tonemap = *render::parseTonemapper(tonemap);  // CLI11 checked the name
+    ro.settings.taa = taa == "on";
     ro.validation = validation;
     ro.device = device;
     ro.debugLabels = !noLabels;

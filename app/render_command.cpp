@@ -47,6 +47,8 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   j["frames"] = o.settings.frames;
   j["seed"] = o.settings.seed;
   j["primary"] = render::primaryName(out.primaryUsed);
+  j["tonemap"] = render::tonemapperName(o.settings.tonemap);
+  j["taa"] = o.settings.taa;
   if (out.rasterGBufferMs >= 0) j["auto"] = {{"raster_gbuffer_ms", out.rasterGBufferMs}, {"traced_gbuffer_ms", out.tracedGBufferMs}};
   j["frame_gpu_ms_median"] = out.frameMedianMs;
   const auto& st = out.scene;

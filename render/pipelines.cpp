@@ -72,8 +72,10 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
                                    {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage},
                                    {8, kSampled}, {9, kSampled}};
   p.lighting = rhi::createComputePipeline(ctx, "lighting.comp", lighting, 0, textures);
+  const rhi::Binding taa[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kStorage}};
+  p.taa = rhi::createComputePipeline(ctx, "taa.comp", taa, 16);
   const rhi::Binding tone[] = {{1, kSampled}, {2, kStorage}};
-  p.tonemap = rhi::createComputePipeline(ctx, "tonemap.comp", tone, 16);
+  p.tonemap = rhi::createComputePipeline(ctx, "tonemap.comp", tone, 24);
   return p;
 }
 

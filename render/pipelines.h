@@ -19,6 +19,7 @@ inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
 inline constexpr VkFormat kVisibilityFormat = VK_FORMAT_R16_SFLOAT;
 inline constexpr VkFormat kVisibilityHistoryFormat = VK_FORMAT_R32_SFLOAT;  // accumulated: never 8 or 16 bits
 inline constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kTaaHistoryFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // a resolved image: fp16 is enough
 inline constexpr VkFormat kRadianceHistoryFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 struct Pipelines {
@@ -31,6 +32,7 @@ struct Pipelines {
   rhi::RayTracingPipeline direct;    // many-light stochastic direct light
   rhi::Pipeline radianceAccumulate;
   rhi::Pipeline lighting;
+  rhi::Pipeline taa;
   rhi::Pipeline tonemap;
 
   // textures: the layout of the bindless texture set (set 1 of every pipeline that shades).

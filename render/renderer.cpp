@@ -15,6 +15,7 @@
 #include "graph/graph.h"
 #include "render/gpu_scene.h"
 #include "render/history.h"
+#include "render/jitter.h"
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
 #include "rhi/commands.h"
@@ -66,6 +67,19 @@ uint32_t texelBytes(VkFormat format) {
   }
 }
 
+// A camera that jumps between two frames starts a new shot: its history would ghost the old view.
+// Real motion at any sensible frame rate stays far below these.
+constexpr float kCutMoveFraction = 0.25f;  // of the distance to the target (the scene's scale)
+constexpr float kCutAngleDegrees = 15.0f;  // turn of the view direction
+
+bool isCameraCut(const scene::Camera& before, const scene::Camera& now) {
+  const glm::vec3 dirBefore = before.target - before.position, dirNow = now.target - now.position;
+  const float distance = glm::length(dirBefore);
+  if (glm::length(now.position - before.position) > kCutMoveFraction * distance) return true;
+  const float cosAngle = glm::dot(dirBefore, dirNow) / (distance * glm::length(dirNow));
+  return cosAngle < std::cos(glm::radians(kCutAngleDegrees)) || now.yFov != before.yFov;
+}
+
 } // namespace
 
 const char* primaryName(Primary p) {
@@ -81,19 +95,20 @@ struct Renderer::Impl {
   const scene::Scene& scene;
   GpuScene gpu;
   Pipelines pipelines;
-  rhi::Sampler nearest;
+  rhi::Sampler nearest, linear;
   rhi::Buffer constants;
   graph::TransientPool transients;
   rhi::CommandList commands;
   rhi::TimestampPool timers;
-  History shadowHistory, specularHistory, directHistory;
+  History shadowHistory, specularHistory, directHistory, taaHistory;
   uint32_t frameIndex = 0;
+  uint32_t taaFrames = 0;  // frames in the TAA history since its last reset
   scene::Scene pose;  // animated scenes: nodes, instances and animations only, posed each frame
-  glm::mat4 prevClipFromWorld{1.0f};  // last frame's unjittered projection, for motion vectors
 
   Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
       : ctx(c), scene(s), gpu(std::move(g)), pipelines(Pipelines::create(c, gpu.bindless->layout())),
         nearest(c, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
+        linear(c, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
         constants(c, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, rhi::MemoryUsage::Upload,
                   "frame-constants"),
         commands(c), timers(c, 32) {}
@@ -101,19 +116,23 @@ struct Renderer::Impl {
   bool manyLights = false;  // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
   uint32_t shadowLights() const { return manyLights ? 0u : std::min(gpu.lightCount, gpu::kMaxShadowLights); }
 
-  void writeConstants(const RenderSettings& s, const scene::Camera& cam) {
+  // Writes the frame's constants; `jitter` is the NDC offset of the primaries, `prevClipFromWorld`
+  // the previous frame's unjittered matrix (none: the first frame of a shot, so no motion).
+  // Returns this frame's unjittered clipFromWorld.
+  glm::mat4 writeConstants(const RenderSettings& s, const scene::Camera& cam, glm::vec2 jitter,
+                           const glm::mat4* prevClipFromWorld) {
     gpu::FrameConstants fc{};
     const float aspect = float(s.width) / float(s.height);
     glm::mat4 view = glm::lookAt(cam.position, cam.target, cam.up);
     // Reversed Z (near → 1, far → 0): swapping the planes in a [0,1]-depth projection does it.
     glm::mat4 proj = glm::perspective(cam.yFov, aspect, cam.zFar, cam.zNear);
     proj[1][1] *= -1.0f;  // Vulkan clip space: y points down
-    fc.clipFromWorld = proj * view;
+    fc.unjitteredClipFromWorld = proj * view;
+    fc.prevClipFromWorld = prevClipFromWorld ? *prevClipFromWorld : fc.unjitteredClipFromWorld;
+    fc.jitter = jitter;
+    // Raster and traced primaries (and every position reconstructed from depth) follow the jitter.
+    fc.clipFromWorld = jitteredClipFromWorld(fc.unjitteredClipFromWorld, jitter);
     fc.worldFromClip = glm::inverse(fc.clipFromWorld);
-    fc.unjitteredClipFromWorld = fc.clipFromWorld;
-    // The first frame of a run has no previous frame: zero camera motion.
-    fc.prevClipFromWorld = frameIndex == 0 ? fc.unjitteredClipFromWorld : prevClipFromWorld;
-    prevClipFromWorld = fc.unjitteredClipFromWorld;
     fc.cameraPosition = glm::vec4(cam.position, 1.0f);
     fc.ambient = glm::vec4(scene.ambient, 0.0f);
     fc.size = {s.width, s.height};
@@ -137,6 +156,7 @@ struct Renderer::Impl {
     for (int k = 0; k < 9; ++k) fc.irradianceSh[k] = glm::vec4(gpu.environment.irradianceSh[k], 0.0f);
     fc.sceneFlags = gpu.anyAlphaTested ? gpu::kSceneAlphaTested : 0u;
     std::memcpy(constants.mapped(), &fc, sizeof(fc));
+    return fc.unjitteredClipFromWorld;
   }
 
   // Poses an animated scene at `seconds`: the instance table gets the new transforms (the old ones
@@ -176,6 +196,10 @@ struct Renderer::Impl {
         {kRadianceHistoryFormat, manyLights ? s.width : 1, manyLights ? s.height : 1, 1,
          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
         "direct-history");
+    taaHistory.ensure(ctx,
+                      {kTaaHistoryFormat, s.width, s.height, 1,
+                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+                      "taa-history");
   }
 
   // Times one G-buffer producer alone: a warm-up frame, then a measured one.
@@ -183,7 +207,7 @@ struct Renderer::Impl {
     double ms = 0;
     for (int run = 0; run < 2; ++run) {
       graph::RenderGraph graph(&ctx, &transients);
-      FrameInputs in{pipelines, gpu, constants, nearest, {s.width, s.height}, gpu.bindless->set()};
+      FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, gpu.bindless->set()};
       GBuffer gb = p == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
       graph.addPass("keep", [&](graph::PassBuilder& b) {
         b.read(gb.normals, graph::Use::SampledCompute);
@@ -233,7 +257,7 @@ struct Renderer::Impl {
     if (manyLights)
       log::info("{} lights, {} shadow layers: one light per pixel by importance", gpu.lightCount,
                 std::min(s.shadowLights, gpu::kMaxShadowLights));
-    writeConstants(s, *cam);
+    writeConstants(s, *cam, glm::vec2(0.0f), nullptr);
     out.primaryUsed = s.primary;
     if (s.primary == Primary::Auto) {
       // On the H100 the raster G-buffer costs many times the traced one; elsewhere raster is cheap.
@@ -254,6 +278,9 @@ struct Renderer::Impl {
     }
     uint32_t accumulated = 0;  // frames in the temporal histories since anything last moved
     bool movedBefore = false;
+    taaHistory.valid = false;  // every headless run starts its own history
+    glm::mat4 prevClipFromWorld(1.0f);
+    scene::Camera prevCamera = *cam;
     const size_t pixels = size_t(s.width) * s.height;
     rhi::Buffer ldrReadback(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
     rhi::Buffer hdrReadback(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "hdr-readback");
@@ -268,10 +295,16 @@ struct Renderer::Impl {
 
     for (uint32_t f = 0; f < s.frames; ++f) {
       frameIndex = f;
-      writeConstants(s, s.cameraPath ? cameraOnPath(*cam, s, f) : *cam);
+      const scene::Camera camera = s.cameraPath ? cameraOnPath(*cam, s, f) : *cam;
+      const bool cut = !taaHistory.valid || isCameraCut(prevCamera, camera) ||
+                       std::find(s.cuts.begin(), s.cuts.end(), f) != s.cuts.end();
+      if (cut) taaFrames = 0;
+      const glm::vec2 jitter = s.taa ? jitterNdc(f, s.width, s.height) : glm::vec2(0.0f);
+      prevClipFromWorld = writeConstants(s, camera, jitter, cut ? nullptr : &prevClipFromWorld);
+      prevCamera = camera;
       const bool last = f + 1 == s.frames;
       graph::RenderGraph graph(&ctx, &transients);
-      FrameInputs in{pipelines, gpu, constants, nearest, {s.width, s.height}, gpu.bindless->set()};
+      FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, gpu.bindless->set()};
       bool moving = s.cameraPath;
       if (animated) {
         const bool moved = poseAnimation(s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0);
@@ -301,7 +334,11 @@ struct Renderer::Impl {
                                     directHistory.next(graph, "direct-history", f), accumulated);
       }
       graph::ImageHandle hdr = shadeLighting(graph, in, gb, visibility, specular, direct);
-      graph::ImageHandle ldr = tonemap(graph, in, hdr, std::exp2(s.exposureEv), s.seed);
+      if (s.taa)
+        hdr = resolveTaa(graph, in,
+                         {hdr, gb.depth, taaHistory.previous(graph, "taa-history", f),
+                          taaHistory.next(graph, "taa-history", f), gb.motion, taaFrames});
+      graph::ImageHandle ldr = tonemap(graph, in, hdr, {std::exp2(s.exposureEv), s.tonemap, s.seed});
       if (last) {
         readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));
         readback(graph, hdr, graph.importBuffer("hdr-readback", &hdrReadback, &hdrState));
@@ -336,6 +373,10 @@ struct Renderer::Impl {
       }
       ctx.collectGarbage();
       ++accumulated;
+      if (s.taa) {
+        taaHistory.valid = true;
+        ++taaFrames;
+      }
       if (s.progress) s.progress(f + 1, s.frames);
     }
 

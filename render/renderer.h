@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "render/tonemap_curves.h"
 #include "scene/scene.h"
 
 namespace rayster::rhi {
@@ -26,6 +27,13 @@ struct RenderSettings {
   uint32_t seed = 0;
   Primary primary = Primary::Auto;
   float exposureEv = 0.0f;
+  Tonemapper tonemap = Tonemapper::Aces;
+  // Temporal anti-aliasing: jitters the primaries by a sub-pixel Halton(2,3) offset each frame and
+  // resolves against a reprojected history, so a static view converges to a supersampled image.
+  bool taa = true;
+  // Frames that start a new shot: the TAA history restarts there, besides the cuts the renderer
+  // detects itself (a camera jump between frames) and the first frame of every render().
+  std::vector<uint32_t> cuts;
   std::string camera;  // name; empty: the scene's first camera
   // Scenes with at most this many lights (<= gpu::kMaxShadowLights) trace a shadow layer per light;
   // with more, every pixel picks one light by importance (many-light mode).

@@ -6,6 +6,7 @@
 #include <volk.h>
 
 #include "graph/graph.h"
+#include "render/tonemap_curves.h"
 
 namespace rayster::rhi {
 class Buffer;
@@ -23,6 +24,7 @@ struct FrameInputs {
   const GpuScene& scene;
   const rhi::Buffer& constants;  // FrameConstants, written by the host before submission
   const rhi::Sampler& nearest;
+  const rhi::Sampler& linear;  // clamp to edge: filtered history fetches (TAA)
   VkExtent2D size;
   VkDescriptorSet textures;  // set 1: the scene's bindless textures
 };
@@ -66,8 +68,26 @@ graph::ImageHandle traceDirect(graph::RenderGraph& graph, const FrameInputs& in,
 graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                  graph::ImageHandle visibility, graph::ImageHandle specular,
                                  graph::ImageHandle direct = {});
-graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle hdr, float exposure,
-                           uint32_t seed);
+// TAA resolve: blends `current` with the reprojected `history` and writes `next` (the output).
+inline constexpr float kTaaCurrentWeight = 0.1f;  // steady-state weight of the current frame (the book)
+struct TaaInputs {
+  graph::ImageHandle current;  // linear HDR (RGBA16F)
+  graph::ImageHandle depth;    // G-buffer depth, for the closest texel and camera motion
+  graph::ImageHandle history;  // previous output; read only when historyFrames > 0
+  graph::ImageHandle next;     // RGBA16F, storage + sampled
+  graph::ImageHandle motion;   // optional RG16F uvCur − uvPrev; without it: camera motion from depth
+  uint32_t historyFrames = 0;  // frames in the history since the last reset; 0: output current
+};
+graph::ImageHandle resolveTaa(graph::RenderGraph& graph, const FrameInputs& in, const TaaInputs& taa);
+
+struct ToneSettings {
+  float exposure = 1.0f;  // linear multiplier, 2^EV
+  Tonemapper op = Tonemapper::Aces;
+  uint32_t seed = 0;      // of the ±0.5 LSB dither
+  bool dither = true;     // off only where tests compare exact 8-bit values
+};
+graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle hdr,
+                           const ToneSettings& tone);
 // Copies an image into a host-visible buffer and makes it visible to the host.
 void readback(graph::RenderGraph& graph, graph::ImageHandle image, graph::BufferHandle buffer);
 

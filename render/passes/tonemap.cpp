@@ -6,8 +6,8 @@
 
 namespace rayster::render {
 
-graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle hdr, float exposure,
-                           uint32_t seed) {
+graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle hdr,
+                           const ToneSettings& tone) {
   graph::ImageHandle ldr = graph.createImage(
       "ldr", {kLdrFormat, in.size.width, in.size.height, 1, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
   graph.addPass(
@@ -16,15 +16,17 @@ graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, gra
         b.read(hdr, graph::Use::SampledCompute);
         b.write(ldr, graph::Use::StorageWriteCompute);
       },
-      [hdr, ldr, exposure, seed, &in](graph::PassContext& pc) {
+      [hdr, ldr, tone, &in](graph::PassContext& pc) {
         const rhi::Pipeline& pipe = in.pipelines.tonemap;
         vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
         rhi::DescriptorWriter()
             .sampledImage(1, pc.image(hdr).view(), in.nearest.handle())
             .storageImage(2, pc.image(ldr).view())
             .push(pc.cmd, pipe);
-        uint32_t push[4] = {in.size.width, in.size.height, 0, seed};
-        std::memcpy(&push[2], &exposure, sizeof(float));
+        const float dither = tone.dither ? 1.0f : 0.0f;
+        uint32_t push[6] = {in.size.width, in.size.height, 0, tone.seed, uint32_t(tone.op), 0};
+        std::memcpy(&push[2], &tone.exposure, sizeof(float));
+        std::memcpy(&push[5], &dither, sizeof(float));
         vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), push);
         vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
       });

@@ -46,6 +46,10 @@ RAYSTER_CONST uint kHitGroupSpheres = 1u;
 // FrameConstants::sceneFlags
 RAYSTER_CONST uint kSceneAlphaTested = 1u;  // some geometry runs any-hit: rays may not be forced opaque
 
+// Tonemap operators (tonemap.comp push constant; render::Tonemapper mirrors them in C++)
+RAYSTER_CONST uint kTonemapAces = 0u;
+RAYSTER_CONST uint kTonemapNeutral = 1u;
+
 // Environment kinds (FrameConstants::environmentKind)
 RAYSTER_CONST uint kEnvironmentBlack = 0u;
 RAYSTER_CONST uint kEnvironmentSky = 1u;
@@ -159,11 +163,11 @@ struct FrameConstants {
   uint64_t instances;   // InstanceRecord[]
   uint64_t materials;   // MaterialRecord[]
   uint64_t lights;      // LightRecord[]
-  // Motion vectors (TECHNIQUES.md §2) use unjittered matrices; clipFromWorld/worldFromClip above
-  // carry this frame's sub-pixel jitter (TAA), so raster and primary rays follow it.
+  // clipFromWorld and worldFromClip above carry this frame's sub-pixel jitter (TAA), so raster and
+  // traced primaries follow it. Motion and reprojection use these unjittered ones (TECHNIQUES.md §2).
   mat4 unjitteredClipFromWorld;
-  mat4 prevClipFromWorld;  // unjittered, last frame (this frame's on the first frame)
-  vec2 jitter;             // NDC offset added this frame
+  mat4 prevClipFromWorld;  // unjittered, the previous frame's (equal to the current one after a reset)
+  vec2 jitter;             // NDC offset added to clip x/y per w this frame: (0, 0) without TAA
   uint manyLights;         // 1: one light per shading point by importance (lib/light_select.glsl)
   uint pad3;
 };
@@ -182,7 +186,10 @@ static_assert(offsetof(FrameConstants, size) == 160);
 static_assert(offsetof(FrameConstants, environment) == 192);
 static_assert(offsetof(FrameConstants, irradianceSh) == 256);
 static_assert(offsetof(FrameConstants, geometries) == 400);
+static_assert(offsetof(FrameConstants, lights) == 424);
 static_assert(offsetof(FrameConstants, unjitteredClipFromWorld) == 432);
+static_assert(offsetof(FrameConstants, prevClipFromWorld) == 496);
+static_assert(offsetof(FrameConstants, jitter) == 560);
 static_assert(sizeof(FrameConstants) == 576);
 } // namespace rayster::gpu
 #endif

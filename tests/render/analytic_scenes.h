@@ -205,7 +205,8 @@ inline Rendered renderHdr(const std::filesystem::path& dir, const std::string& n
   Rendered out;
   auto png = dir / (name + ".png");
   auto exr = dir / (name + ".exr");
-  std::string args = fmt::format("render {} --size {}x{} --frames {} --seed 7 --hdr {} -o {} {}", scene.string(), w, h,
+  // No TAA: its sub-pixel jitter would move the pixel centres the closed forms are evaluated at.
+  std::string args = fmt::format("render {} --size {}x{} --frames {} --seed 7 --taa off --hdr {} -o {} {}", scene.string(), w, h,
                                  frames, exr.string(), png.string(), extra);
   if (!aovs.empty()) args += " --aov " + aovs;
   RunResult r = runRayster(args);

@@ -138,19 +138,20 @@ inline std::filesystem::path writeEnvironmentSceneFile(const std::filesystem::pa
 namespace rayster::test {
 
 // A grey floor and a red 1×2 m quad standing on it, facing +Z, that slides from x = −1.5 (t = 0 s)
-// to x = +1.5 (t = 1 s) by a LINEAR translation animation; a hard point light above the camera.
+// to x = +1.5 (t = 1 s) by a LINEAR translation animation and rests there until t = 2 s (the loop
+// point); a hard point light above the camera.
 inline std::filesystem::path writeAnimatedGltf(const std::filesystem::path& dir) {
   std::vector<float> pos = {-3, 0, -3, 3, 0, -3, 3, 0, 3, -3, 0, 3, -0.5f, 0, 0, 0.5f, 0, 0, 0.5f, 2, 0, -0.5f, 2, 0};
   std::vector<float> nrm = {0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
-  std::vector<uint16_t> idx = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7};
-  std::vector<float> times = {0, 1};
-  std::vector<float> moves = {-1.5f, 0, 0, 1.5f, 0, 0};
+  std::vector<uint16_t> idx = {0, 2, 1, 0, 3, 2, 0, 1, 2, 0, 2, 3};
+  std::vector<float> times = {0, 1, 2};
+  std::vector<float> moves = {-1.5f, 0, 0, 1.5f, 0, 0, 1.5f, 0, 0};
   std::vector<uint8_t> buf;
   appendBytes(buf, pos);    // 0..96
   appendBytes(buf, nrm);    // 96..192
   appendBytes(buf, idx);    // 192..216
-  appendBytes(buf, times);  // 216..224
-  appendBytes(buf, moves);  // 224..248
+  appendBytes(buf, times);  // 216..228
+  appendBytes(buf, moves);  // 228..264
   std::string json = R"({
   "asset": {"version": "2.0"},
   "extensionsUsed": ["KHR_lights_punctual"],
@@ -181,8 +182,8 @@ inline std::filesystem::path writeAnimatedGltf(const std::filesystem::path& dir)
     {"buffer": 0, "byteOffset": 0, "byteLength": 96},
     {"buffer": 0, "byteOffset": 96, "byteLength": 96},
     {"buffer": 0, "byteOffset": 192, "byteLength": 24},
-    {"buffer": 0, "byteOffset": 216, "byteLength": 8},
-    {"buffer": 0, "byteOffset": 224, "byteLength": 24}
+    {"buffer": 0, "byteOffset": 216, "byteLength": 12},
+    {"buffer": 0, "byteOffset": 228, "byteLength": 36}
   ],
   "accessors": [
     {"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-3, 0, -3], "max": [3, 0, 3]},
@@ -191,8 +192,8 @@ inline std::filesystem::path writeAnimatedGltf(const std::filesystem::path& dir)
     {"bufferView": 1, "byteOffset": 48, "componentType": 5126, "count": 4, "type": "VEC3"},
     {"bufferView": 2, "byteOffset": 0, "componentType": 5123, "count": 6, "type": "SCALAR"},
     {"bufferView": 2, "byteOffset": 12, "componentType": 5123, "count": 6, "type": "SCALAR"},
-    {"bufferView": 3, "byteOffset": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
-    {"bufferView": 4, "byteOffset": 0, "componentType": 5126, "count": 2, "type": "VEC3"}
+    {"bufferView": 3, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "SCALAR", "min": [0], "max": [2]},
+    {"bufferView": 4, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3"}
   ]
 })";
   auto path = dir / "animated.gltf";

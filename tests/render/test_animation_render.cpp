@@ -27,6 +27,7 @@ TEST_P(AnimationRender, PlayedFrameMatchesThePausedPose) {
   Image8 played = renderOk(dir, "played", scene + args() + " --frames 2 --path-fps 1", kW, kH);
   Image8 paused = renderOk(dir, "paused", scene + args() + " --frames 1 --time 1 --pause", kW, kH);
   Image8 start = renderOk(dir, "start", scene + args() + " --frames 1 --time 0 --pause", kW, kH);
+  ASSERT_FALSE(HasFailure());
   ImageDiff same = compare(paused, played, 1);
   EXPECT_GE(same.fractionWithinTolerance, 0.999) << "max diff " << same.maxChannelDiff;
   ImageDiff moved = compare(start, played, 8);
