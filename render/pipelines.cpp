@@ -54,6 +54,18 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
                        {6, kStorage}};
   specular.globalSet = textures;
   p.specular = rhi::RayTracingPipeline(ctx, specular);
+  // AO rays are shadow rays of another length: same miss and hit groups.
+  rhi::RayTracingPipelineDesc ao = shadow;
+  ao.raygen = "ao.rgen";
+  p.ao = rhi::RayTracingPipeline(ctx, ao);
+  rhi::RayTracingPipelineDesc indirect;
+  indirect.raygen = "indirect.rgen";
+  indirect.miss = {"primary.rmiss", "shadow.rmiss"};  // radiance rays miss 0, shadow rays miss 1
+  indirect.hitGroups = primary.hitGroups;
+  indirect.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kStorage}};
+  indirect.globalSet = textures;
+  p.indirect = rhi::RayTracingPipeline(ctx, indirect);
+
   const rhi::Binding radiance[] = {{1, kStorage}, {2, kStorage}, {3, kStorage}};
   p.radianceAccumulate = rhi::createComputePipeline(ctx, "radiance_accumulate.comp", radiance, 16);
 
@@ -61,7 +73,7 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   p.shadowAccumulate = rhi::createComputePipeline(ctx, "shadow_accumulate.comp", accumulate, 16);
   const rhi::Binding lighting[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled},
                                    {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage},
-                                   {8, kSampled}};
+                                   {8, kSampled}, {9, kSampled}, {10, kSampled}};
   p.lighting = rhi::createComputePipeline(ctx, "lighting.comp", lighting, 0, textures);
   const rhi::Binding tone[] = {{1, kSampled}, {2, kStorage}};
   p.tonemap = rhi::createComputePipeline(ctx, "tonemap.comp", tone, 16);

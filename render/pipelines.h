@@ -28,6 +28,8 @@ struct Pipelines {
   rhi::Pipeline shadowAccumulate;
   rhi::RayTracingPipeline specular;  // reflections and refractions (bounce loop)
   rhi::Pipeline radianceAccumulate;
+  rhi::RayTracingPipeline ao;        // ambient occlusion
+  rhi::RayTracingPipeline indirect;  // one-bounce indirect diffuse
   rhi::Pipeline lighting;
   rhi::Pipeline tonemap;
 

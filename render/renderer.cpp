@@ -26,7 +26,8 @@ namespace rayster::render {
 const std::vector<std::string>& aovNames() {
   static const std::vector<std::string> names = {"depth",       "normal",         "albedo",          "material",
                                                  "emissive",    "shadow-raw",     "shadow-denoised", "reflection-raw",
-                                                 "reflection-denoised"};
+                                                 "reflection-denoised", "ao-raw",    "ao-denoised",     "indirect-raw",
+                                                 "indirect-denoised"};
   return names;
 }
 
@@ -81,7 +82,7 @@ struct Renderer::Impl {
   graph::TransientPool transients;
   rhi::CommandList commands;
   rhi::TimestampPool timers;
-  History shadowHistory, specularHistory;
+  History shadowHistory, specularHistory, aoHistory, indirectHistory;
   uint32_t frameIndex = 0;
 
   Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
@@ -90,6 +91,14 @@ struct Renderer::Impl {
         constants(c, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, rhi::MemoryUsage::Upload,
                   "frame-constants"),
         commands(c), timers(c, 32) {}
+
+  bool indirectOn(const RenderSettings& s) const { return s.indirect.value_or(scene.indirectByDefault); }
+  float aoRadius(const RenderSettings& s) const {
+    if (s.aoRadius > 0.0f) return s.aoRadius;
+    const scene::Aabb b = scene.bounds();
+    const float diagonal = b.valid() ? glm::length(b.max - b.min) : 0.0f;
+    return diagonal > 0.0f ? kAoRadiusFraction * diagonal : 1.0f;
+  }
 
   uint32_t shadowLights() const { return std::min(gpu.lightCount, gpu::kMaxShadowLights); }
 
@@ -123,6 +132,11 @@ struct Renderer::Impl {
     fc.skyGround = env.ground;
     for (int k = 0; k < 9; ++k) fc.irradianceSh[k] = glm::vec4(gpu.environment.irradianceSh[k], 0.0f);
     fc.sceneFlags = gpu.anyAlphaTested ? gpu::kSceneAlphaTested : 0u;
+    fc.mirrorRoughness = s.mirrorRoughness;
+    fc.glossyThreshold = s.glossyThreshold;
+    fc.aoRadius = aoRadius(s);
+    fc.effectFlags = (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u);
+    fc.dfgSlot = gpu.dfgSlot;
     std::memcpy(constants.mapped(), &fc, sizeof(fc));
   }
 
@@ -136,6 +150,15 @@ struct Renderer::Impl {
         {kRadianceHistoryFormat, s.width, s.height, 1,
          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
         "specular-history");
+    aoHistory.ensure(ctx,
+                     {kVisibilityHistoryFormat, s.width, s.height, 1,
+                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, true},
+                     "ao-history");
+    indirectHistory.ensure(
+        ctx,
+        {kRadianceHistoryFormat, s.width, s.height, 1,
+         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+        "indirect-history");
   }
 
   // Times one G-buffer producer alone: a warm-up frame, then a measured one.
@@ -232,7 +255,19 @@ struct Renderer::Impl {
       graph::ImageHandle specularNext = specularHistory.next(graph, "specular-history", f);
       graph::ImageHandle specular =
           accumulateRadiance(graph, in, specularRaw, specularPrev, specularNext, s.cameraPath ? 0 : f);
-      graph::ImageHandle hdr = shadeLighting(graph, in, gb, visibility, specular);
+      // AO and indirect light: accumulated like the shadows until their denoisers exist; when an
+      // effect is off its raw image is constant and goes to lighting as is.
+      const uint32_t samples = s.cameraPath ? 0 : f;
+      graph::ImageHandle aoRaw = traceAo(graph, in, gb), ao = aoRaw;
+      if (s.ao)
+        ao = accumulateShadows(graph, in, aoRaw, aoHistory.previous(graph, "ao-history", f),
+                               aoHistory.next(graph, "ao-history", f), samples, "ao-accumulate");
+      graph::ImageHandle indirectRaw = traceIndirect(graph, in, gb), indirect = indirectRaw;
+      if (indirectOn(s))
+        indirect = accumulateRadiance(graph, in, indirectRaw, indirectHistory.previous(graph, "indirect-history", f),
+                                      indirectHistory.next(graph, "indirect-history", f), samples,
+                                      "indirect-accumulate");
+      graph::ImageHandle hdr = shadeLighting(graph, in, gb, visibility, specular, ao, indirect);
       graph::ImageHandle ldr = tonemap(graph, in, hdr, std::exp2(s.exposureEv), s.seed);
       if (last) {
         readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));
@@ -241,7 +276,9 @@ struct Renderer::Impl {
         const std::map<std::string, graph::ImageHandle> stages = {
             {"depth", gb.depth},      {"normal", gb.normals},         {"albedo", gb.albedo},
             {"material", gb.material}, {"emissive", gb.emissive},     {"shadow-raw", raw},
-            {"shadow-denoised", visibility}, {"reflection-raw", specularRaw}, {"reflection-denoised", specular}};
+            {"shadow-denoised", visibility}, {"reflection-raw", specularRaw}, {"reflection-denoised", specular},
+            {"ao-raw", aoRaw},           {"ao-denoised", ao},             {"indirect-raw", indirectRaw},
+            {"indirect-denoised", indirect}};
         for (const std::string& name : s.aovs) {
           graph::ImageHandle h = stages.at(name);
           const rhi::ImageDesc& d = graph.imageDesc(h);

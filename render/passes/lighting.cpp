@@ -6,18 +6,19 @@
 namespace rayster::render {
 
 graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                 graph::ImageHandle visibility, graph::ImageHandle specular) {
+                                 graph::ImageHandle visibility, graph::ImageHandle specular, graph::ImageHandle ao,
+                                 graph::ImageHandle indirect) {
   graph::ImageHandle hdr = graph.createImage(
       "hdr", {kHdrFormat, in.size.width, in.size.height, 1,
               VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
   graph.addPass(
       "lighting",
       [&](graph::PassBuilder& b) {
-        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, visibility, specular})
+        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, visibility, specular, ao, indirect})
           b.read(h, graph::Use::SampledCompute);
         b.write(hdr, graph::Use::StorageWriteCompute);
       },
-      [gb, visibility, specular, hdr, &in](graph::PassContext& pc) {
+      [gb, visibility, specular, ao, indirect, hdr, &in](graph::PassContext& pc) {
         const rhi::Pipeline& pipe = in.pipelines.lighting;
         VkSampler s = in.nearest.handle();
         vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
@@ -31,6 +32,8 @@ graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& i
             .sampledImage(6, pc.image(visibility).view(), s)
             .storageImage(7, pc.image(hdr).view())
             .sampledImage(8, pc.image(specular).view(), s)
+            .sampledImage(9, pc.image(ao).view(), s)
+            .sampledImage(10, pc.image(indirect).view(), s)
             .push(pc.cmd, pipe);
         bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.layout());
         vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);

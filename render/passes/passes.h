@@ -44,18 +44,29 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in);
 
 // One visibility layer per shadowed light (R16F array), 1 sample per pixel.
 graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t lights);
-// Running mean over frames: reads `history` (holding `samples` samples), writes `next`.
+// Running mean over frames: reads `history` (holding `samples` samples), writes `next`. Any R16F
+// array of visibility-like values (shadows, AO); `name` labels the pass.
 graph::ImageHandle accumulateShadows(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle raw,
-                                     graph::ImageHandle history, graph::ImageHandle next, uint32_t samples);
+                                     graph::ImageHandle history, graph::ImageHandle next, uint32_t samples,
+                                     const char* name = "shadow-accumulate");
 
 // Reflections and refractions of mirror, metal and glass pixels (RGBA16F radiance, 0 elsewhere).
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
 // Running mean of a radiance image over frames: reads `history` (holding `samples`), writes `next`.
 graph::ImageHandle accumulateRadiance(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle raw,
-                                      graph::ImageHandle history, graph::ImageHandle next, uint32_t samples);
+                                      graph::ImageHandle history, graph::ImageHandle next, uint32_t samples,
+                                      const char* name = "specular-accumulate");
+
+// Ambient occlusion (one-layer R16F array, 1 unoccluded), 1 sample per pixel; 1 everywhere when
+// FrameConstants::effectFlags lacks kEffectAo.
+graph::ImageHandle traceAo(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
+// One-bounce indirect diffuse irradiance E (RGBA16F, demodulated), 1 sample per pixel; 0 when
+// FrameConstants::effectFlags lacks kEffectIndirect.
+graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
 
 graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                 graph::ImageHandle visibility, graph::ImageHandle specular);
+                                 graph::ImageHandle visibility, graph::ImageHandle specular, graph::ImageHandle ao,
+                                 graph::ImageHandle indirect);
 graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle hdr, float exposure,
                            uint32_t seed);
 // Copies an image into a host-visible buffer and makes it visible to the host.

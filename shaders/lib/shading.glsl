@@ -6,13 +6,23 @@
 #ifndef RAYSTER_SHADING_GLSL
 #define RAYSTER_SHADING_GLSL
 
-// Surfaces this smooth, and all transmissive ones, get their specular light from traced rays
-// (the bounce loop); rougher ones from the light sources and the environment map. Glossy
-// reflections with VNDF sampling and a denoiser replace this split later (TECHNIQUES.md §11).
+// Hits of the bounce loop this smooth, and all transmissive ones, continue the specular path;
+// rougher hits end it, shaded here.
 const float kMirrorRoughness = 0.1;
+// First surfaces rougher than FrameConstants::glossyThreshold fade from traced glossy reflections to
+// the environment approximation over this much roughness, so no seam shows (TECHNIQUES.md §11).
+const float kGlossyBlend = 0.1;
 
 bool tracedSpecular(float roughness, float transmission) {
   return roughness <= kMirrorRoughness || transmission > 0.0;
+}
+
+// How much of a G-buffer surface's specular light the specular pass traces (mirror, glass, glossy:
+// 1; past the glossy threshold it fades to 0); the rest comes from light sources and the
+// environment approximation.
+float tracedSpecularWeight(float roughness, float transmission) {
+  if (transmission > 0.0 || roughness <= frame.mirrorRoughness) return 1.0;
+  return 1.0 - clamp((roughness - frame.glossyThreshold) / kGlossyBlend, 0.0, 1.0);
 }
 
 struct ShadingInput {
@@ -24,19 +34,26 @@ struct ShadingInput {
   float metallic;
   float roughness;
   float transmission;
-  float ao;
+  float ao;            // the material's occlusion texture
   vec3 emissive;
+  float tracedWeight;  // share of the specular light traced elsewhere (tracedSpecularWeight()); not added here
+  float envOcclusion;  // ray-traced AO: scales ambient and environment light only, never direct light
+  bool useIndirect;    // diffuse indirect light is `indirect` (RT one bounce), not ambient + SH environment
+  vec3 indirect;       // irradiance E of the diffuse indirect light, when useIndirect
 };
 
 vec3 shadeSurface(ShadingInput s, inout uint rng) {
   SurfaceBsdf bsdf = makeBsdf(s.baseColor, s.metallic, s.roughness);
   // Transmitted light leaves through the specular path; what is left scatters diffusely.
   bsdf.diffuse *= 1.0 - s.transmission;
-  const bool traced = tracedSpecular(s.roughness, s.transmission);
+  const float w = s.tracedWeight;
   float nv = max(dot(s.n, s.v), 1e-4);
   vec3 fv = bsdf.f0 + (max(vec3(1.0 - s.roughness), bsdf.f0) - bsdf.f0) * pow(1.0 - nv, 5.0);
+  float occlusion = s.ao * s.envOcclusion;
 
-  vec3 radiance = s.emissive + frame.ambient.rgb * (bsdf.diffuse + (traced ? vec3(0.0) : bsdf.f0)) * s.ao;
+  // Uniform ambient radiance stands in for indirect light: the traced indirect replaces its diffuse part.
+  vec3 ambientReflectance = (s.useIndirect ? vec3(0.0) : bsdf.diffuse) + (1.0 - w) * bsdf.f0;
+  vec3 radiance = s.emissive + frame.ambient.rgb * ambientReflectance * occlusion;
   for (uint i = 0u; i < frame.lightCount; ++i) {
     LightRecord light = Lights(frame.lights).l[i];
     vec3 l;
@@ -45,26 +62,25 @@ vec3 shadeSurface(ShadingInput s, inout uint rng) {
     if (all(equal(incident, vec3(0.0)))) continue;
     float visibility = lightVisibility(i, s.p, s.ng, rng);
     if (visibility <= 0.0) continue;
-    vec3 f;
-    if (traced) {
-      // The traced reflection already sees the light's visible shape: only the diffuse layer here.
-      float nl = max(dot(s.n, l), 0.0);
-      f = (1.0 - fv) * bsdf.diffuse / kPi * nl;
-    } else {
+    // The traced reflection already sees the light's visible shape: only the diffuse layer for its share.
+    float nl = max(dot(s.n, l), 0.0);
+    vec3 f = w * (1.0 - fv) * bsdf.diffuse / kPi * nl;
+    if (w < 1.0) {
       float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
-      f = evalBsdfCos(bsdf, s.n, s.v, l, 0.5 * widen);
+      f += (1.0 - w) * evalBsdfCos(bsdf, s.n, s.v, l, 0.5 * widen);
     }
     radiance += f * incident * visibility;
   }
-  // Unshadowed environment light until ray-traced AO exists: diffuse from the SH irradiance,
-  // specular (for surfaces the bounce loop does not handle) along the mirror direction, blurred
-  // towards the irradiance as roughness grows.
+  // Diffuse: from the traced indirect rays (their misses see the environment, so the SH term would
+  // count it twice), else the SH irradiance scaled by AO. Specular (the untraced share) along the
+  // mirror direction, blurred towards the irradiance as roughness grows, scaled by AO.
+  if (s.useIndirect) radiance += bsdf.diffuse * s.indirect / kPi * (1.0 - fv) * s.ao;
   if (frame.environmentKind != kEnvironmentBlack) {
-    radiance += bsdf.diffuse * environmentIrradiance(s.n) / kPi * (1.0 - fv) * s.ao;
-    if (!traced) {
+    if (!s.useIndirect) radiance += bsdf.diffuse * environmentIrradiance(s.n) / kPi * (1.0 - fv) * occlusion;
+    if (w < 1.0) {
       vec3 r = reflect(-s.v, s.n);
       vec3 specularEnv = mix(environmentRadiance(r), environmentIrradiance(r) / kPi, s.roughness);
-      radiance += fv * specularEnv * s.ao;
+      radiance += (1.0 - w) * fv * specularEnv * occlusion;
     }
   }
   return radiance;

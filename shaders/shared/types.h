@@ -27,6 +27,7 @@ RAYSTER_CONST uint kLightSpot = 1u;
 RAYSTER_CONST uint kLightDirectional = 2u;
 
 RAYSTER_CONST uint kMaxShadowLights = 8u;  // one visibility layer each
+RAYSTER_CONST uint kDfgSize = 32u;         // split-sum DFG table, kDfgSize² texels (render/dfg.h)
 RAYSTER_CONST uint kBackgroundId = 0xFFFFFFFFu;
 RAYSTER_CONST uint kNoTexture = 0xFFFFFFFFu;
 
@@ -45,6 +46,10 @@ RAYSTER_CONST uint kHitGroupSpheres = 1u;
 
 // FrameConstants::sceneFlags
 RAYSTER_CONST uint kSceneAlphaTested = 1u;  // some geometry runs any-hit: rays may not be forced opaque
+
+// FrameConstants::effectFlags
+RAYSTER_CONST uint kEffectAo = 1u;        // ray-traced ambient occlusion scales ambient/environment light
+RAYSTER_CONST uint kEffectIndirect = 2u;  // one-bounce ray-traced indirect diffuse replaces ambient/env diffuse
 
 // Environment kinds (FrameConstants::environmentKind)
 RAYSTER_CONST uint kEnvironmentBlack = 0u;
@@ -158,6 +163,14 @@ struct FrameConstants {
   uint64_t instances;   // InstanceRecord[]
   uint64_t materials;   // MaterialRecord[]
   uint64_t lights;      // LightRecord[]
+  float mirrorRoughness;  // first surfaces at most this rough reflect as perfect mirrors (negative: none)
+  float glossyThreshold;  // up to this roughness reflections are traced with GGX VNDF samples (§11)
+  float aoRadius;         // RT AO ray length (world units)
+  uint effectFlags;       // kEffect* bits
+  uint dfgSlot;           // bindless slot of the split-sum DFG table (render/dfg.h)
+  uint pad2;
+  uint pad3;
+  uint pad4;
 };
 
 #ifdef __cplusplus
@@ -174,7 +187,8 @@ static_assert(offsetof(FrameConstants, size) == 160);
 static_assert(offsetof(FrameConstants, environment) == 192);
 static_assert(offsetof(FrameConstants, irradianceSh) == 256);
 static_assert(offsetof(FrameConstants, geometries) == 400);
-static_assert(sizeof(FrameConstants) == 432);
+static_assert(offsetof(FrameConstants, mirrorRoughness) == 432);
+static_assert(sizeof(FrameConstants) == 464);
 } // namespace rayster::gpu
 #endif
 
