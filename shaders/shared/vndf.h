@@ -6,10 +6,10 @@
 #ifndef RAYSTER_SHARED_VNDF_H
 #define RAYSTER_SHARED_VNDF_H
 
-#include "shared/types.h"
-
 #ifdef __cplusplus
 #include <cmath>
+
+#include "shaders/shared/types.h"
 namespace rayster::gpu {
 using glm::cross;
 using glm::dot;
@@ -21,6 +21,7 @@ using std::sin;
 using std::sqrt;
 #define RAYSTER_FN inline
 #else
+#include "shared/types.h"
 #define RAYSTER_FN
 #endif
 
