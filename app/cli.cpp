@@ -76,11 +76,29 @@ int run(int argc, char** argv) {
                    "Fly along the scene file's camera path, one frame per 1/--path-fps seconds");
   render->add_option("--path-fps", ro.settings.pathFps, "Frames per second of path playback (default 60)")
       ->check(CLI::Range(1.0f, 10000.0f));
+  render->add_option("--glossy-threshold", ro.settings.glossyThreshold,
+                     "Trace glossy reflections (one GGX VNDF sample per pixel) up to this roughness; rougher "
+                     "surfaces fade to the environment approximation over 0.1 more (default 0.5)")
+      ->check(CLI::Range(0.0f, 1.0f));
+  render->add_option("--mirror-roughness", ro.settings.mirrorRoughness,
+                     "Surfaces at most this rough reflect as perfect mirrors (default 0.1; negative: none, every "
+                     "opaque reflection is VNDF-sampled)")
+      ->check(CLI::Range(-1.0f, 1.0f));
+  std::string ao = "on", indirect;
+  render->add_option("--ao", ao, "Ray-traced ambient occlusion of ambient and environment light: on (default) or off")
+      ->check(CLI::IsMember({"on", "off"}));
+  render->add_option("--ao-radius", ro.settings.aoRadius,
+                     "AO ray length in scene units (default 0.1 x the scene's bounding-box diagonal)")
+      ->check(CLI::PositiveNumber);
+  render->add_option("--indirect", indirect,
+                     "One-bounce ray-traced indirect diffuse: on or off (default: on for builtin:whitted and "
+                     "builtin:cornell, off otherwise)")
+      ->check(CLI::IsMember({"on", "off"}));
   render->add_flag("--timings", ro.printTimings, "Print per-pass GPU times");
   render->add_option("--aov", ro.aovs,
                      "Also write intermediates as <stem>.<name>.png and .exr: all, or a comma-separated list of "
                      "depth, normal, albedo, material, emissive, shadow-raw, shadow-denoised, reflection-raw, "
-                     "reflection-denoised");
+                     "reflection-denoised, ao-raw, ao-denoised, indirect-raw, indirect-denoised");
   render->add_option("--json", ro.jsonOutput, "Write per-pass GPU times and settings as JSON to this file");
 
   CLI::App* info = cli.add_subcommand("info", "List Vulkan devices and their ray-tracing capabilities");
@@ -123,6 +141,8 @@ int run(int argc, char** argv) {
                                               : render::Primary::Auto;
     ro.settings.tonemap = *render::parseTonemapper(tonemap);  // CLI11 checked the name
     ro.settings.taa = taa == "on";
+    ro.settings.ao = ao == "on";
+    if (!indirect.empty()) ro.settings.indirect = indirect == "on";
     ro.validation = validation;
     ro.device = device;
     ro.debugLabels = !noLabels;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/half.h"
+#include "render/dfg.h"
 #include "render/gpu_scene.h"
 #include "rhi/upload.h"
 #include "rhi/context.h"
@@ -93,6 +94,21 @@ void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& g
   // the shader to the lookup direction, so the map and its irradiance stay consistent.
   const float band[9] = {kPi, 2 * kPi / 3, 2 * kPi / 3, 2 * kPi / 3, kPi / 4, kPi / 4, kPi / 4, kPi / 4, kPi / 4};
   for (int k = 0; k < 9; ++k) out.irradianceSh[k] = sh[k] * band[k] * env.intensity;
+}
+
+void uploadDfgTable(rhi::Context& ctx, GpuScene& gs) {
+  const std::vector<glm::vec2> table = computeDfgTable();
+  std::vector<uint16_t> halves;
+  halves.reserve(table.size() * 2);
+  for (glm::vec2 ab : table) {
+    halves.push_back(floatToHalf(ab.x));
+    halves.push_back(floatToHalf(ab.y));
+  }
+  gs.dfgTable = rhi::uploadImage(ctx, {VK_FORMAT_R16G16_SFLOAT, kDfgSize, kDfgSize, 1, 0},
+                                 std::as_bytes(std::span(halves)), false, "dfg-table");
+  gs.samplers.emplace_back(ctx, VK_FILTER_LINEAR, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                           VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false);
+  gs.dfgSlot = gs.bindless->add(gs.dfgTable.view(), gs.samplers.back().handle());
 }
 
 } // namespace rayster::render

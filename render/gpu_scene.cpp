@@ -111,6 +111,7 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   }
   uploadMaterials(ctx, scene, gs);
   uploadEnvironment(ctx, scene, gs);
+  uploadDfgTable(ctx, gs);
 
   std::vector<gpu::InstanceRecord> instanceRows;
   std::vector<VkAccelerationStructureInstanceKHR> tlasInstances;

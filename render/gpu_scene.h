@@ -40,6 +40,8 @@ struct GpuScene {
   std::unique_ptr<rhi::BindlessTextures> bindless;
   rhi::Image environmentMap;
   GpuEnvironment environment;
+  rhi::Image dfgTable;                // split-sum DFG (render/dfg.h), RG16F
+  uint32_t dfgSlot = 0xFFFFFFFFu;     // its bindless slot
   std::vector<rhi::AccelerationStructure> blases;
   rhi::Tlas tlas;
   std::vector<VkAccelerationStructureInstanceKHR> tlasInstances;  // as built; updated when instances move
@@ -62,6 +64,8 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene);
 void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs);
 // Environment map and its irradiance (render/gpu_environment.cpp).
 void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs);
+// The split-sum DFG table of glossy reflections, into the bindless array (render/gpu_environment.cpp).
+void uploadDfgTable(rhi::Context& ctx, GpuScene& gs);
 // Uploads RGBA8 pixels to a sampled image with a full mip chain (render/gpu_materials.cpp).
 rhi::Image uploadTexture(rhi::Context& ctx, const scene::ImageData& image);
 

@@ -63,6 +63,18 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   direct.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
                      {6, kStorage}};
   p.direct = rhi::RayTracingPipeline(ctx, direct);
+  // AO rays are shadow rays of another length: same miss and hit groups.
+  rhi::RayTracingPipelineDesc ao = shadow;
+  ao.raygen = "ao.rgen";
+  p.ao = rhi::RayTracingPipeline(ctx, ao);
+  rhi::RayTracingPipelineDesc indirect;
+  indirect.raygen = "indirect.rgen";
+  indirect.miss = {"primary.rmiss", "shadow.rmiss"};  // radiance rays miss 0, shadow rays miss 1
+  indirect.hitGroups = primary.hitGroups;
+  indirect.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kStorage}};
+  indirect.globalSet = textures;
+  p.indirect = rhi::RayTracingPipeline(ctx, indirect);
+
   const rhi::Binding radiance[] = {{1, kStorage}, {2, kStorage}, {3, kStorage}};
   p.radianceAccumulate = rhi::createComputePipeline(ctx, "radiance_accumulate.comp", radiance, 16);
 
@@ -70,7 +82,7 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   p.shadowAccumulate = rhi::createComputePipeline(ctx, "shadow_accumulate.comp", accumulate, 16);
   const rhi::Binding lighting[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled},
                                    {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage},
-                                   {8, kSampled}, {9, kSampled}};
+                                   {8, kSampled}, {9, kSampled}, {10, kSampled}, {11, kSampled}};
   p.lighting = rhi::createComputePipeline(ctx, "lighting.comp", lighting, 0, textures);
   const rhi::Binding taa[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kStorage}};
   p.taa = rhi::createComputePipeline(ctx, "taa.comp", taa, 16);

@@ -31,6 +31,8 @@ struct Pipelines {
   rhi::RayTracingPipeline specular;  // reflections and refractions (bounce loop)
   rhi::RayTracingPipeline direct;    // many-light stochastic direct light
   rhi::Pipeline radianceAccumulate;
+  rhi::RayTracingPipeline ao;        // ambient occlusion
+  rhi::RayTracingPipeline indirect;  // one-bounce indirect diffuse
   rhi::Pipeline lighting;
   rhi::Pipeline taa;
   rhi::Pipeline tonemap;

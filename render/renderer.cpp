@@ -29,7 +29,8 @@ namespace rayster::render {
 const std::vector<std::string>& aovNames() {
   static const std::vector<std::string> names = {"depth",       "normal",         "albedo",          "material",
                                                  "emissive",    "motion",  "shadow-raw",     "shadow-denoised", "reflection-raw",
-                                                 "reflection-denoised"};
+                                                 "reflection-denoised", "ao-raw",    "ao-denoised",     "indirect-raw",
+                                                 "indirect-denoised"};
   return names;
 }
 
@@ -100,7 +101,7 @@ struct Renderer::Impl {
   graph::TransientPool transients;
   rhi::CommandList commands;
   rhi::TimestampPool timers;
-  History shadowHistory, specularHistory, directHistory, taaHistory;
+  History shadowHistory, specularHistory, directHistory, taaHistory, aoHistory, indirectHistory;
   uint32_t frameIndex = 0;
   uint32_t taaFrames = 0;  // frames in the TAA history since its last reset
   scene::Scene pose;  // animated scenes: nodes, instances and animations only, posed each frame
@@ -114,6 +115,14 @@ struct Renderer::Impl {
         commands(c), timers(c, 32) {}
 
   bool manyLights = false;  // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
+  bool indirectOn(const RenderSettings& s) const { return s.indirect.value_or(scene.indirectByDefault); }
+  float aoRadius(const RenderSettings& s) const {
+    if (s.aoRadius > 0.0f) return s.aoRadius;
+    const scene::Aabb b = scene.bounds();
+    const float diagonal = b.valid() ? glm::length(b.max - b.min) : 0.0f;
+    return diagonal > 0.0f ? kAoRadiusFraction * diagonal : 1.0f;
+  }
+
   uint32_t shadowLights() const { return manyLights ? 0u : std::min(gpu.lightCount, gpu::kMaxShadowLights); }
 
   // Writes the frame's constants; `jitter` is the NDC offset of the primaries, `prevClipFromWorld`
@@ -155,6 +164,11 @@ struct Renderer::Impl {
     fc.skyGround = env.ground;
     for (int k = 0; k < 9; ++k) fc.irradianceSh[k] = glm::vec4(gpu.environment.irradianceSh[k], 0.0f);
     fc.sceneFlags = gpu.anyAlphaTested ? gpu::kSceneAlphaTested : 0u;
+    fc.mirrorRoughness = s.mirrorRoughness;
+    fc.glossyThreshold = s.glossyThreshold;
+    fc.aoRadius = aoRadius(s);
+    fc.effectFlags = (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u);
+    fc.dfgSlot = gpu.dfgSlot;
     std::memcpy(constants.mapped(), &fc, sizeof(fc));
     return fc.unjitteredClipFromWorld;
   }
@@ -200,6 +214,15 @@ struct Renderer::Impl {
                       {kTaaHistoryFormat, s.width, s.height, 1,
                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
                       "taa-history");
+    aoHistory.ensure(ctx,
+                     {kVisibilityHistoryFormat, s.width, s.height, 1,
+                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, true},
+                     "ao-history");
+    indirectHistory.ensure(
+        ctx,
+        {kRadianceHistoryFormat, s.width, s.height, 1,
+         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+        "indirect-history");
   }
 
   // Times one G-buffer producer alone: a warm-up frame, then a measured one.
@@ -333,7 +356,18 @@ struct Renderer::Impl {
         direct = accumulateRadiance(graph, in, directRaw, directHistory.previous(graph, "direct-history", f),
                                     directHistory.next(graph, "direct-history", f), accumulated);
       }
-      graph::ImageHandle hdr = shadeLighting(graph, in, gb, visibility, specular, direct);
+      // AO and indirect light: accumulated like the shadows until their denoisers exist; when an
+      // effect is off its raw image is constant and goes to lighting as is.
+      graph::ImageHandle aoRaw = traceAo(graph, in, gb), ao = aoRaw;
+      if (s.ao)
+        ao = accumulateShadows(graph, in, aoRaw, aoHistory.previous(graph, "ao-history", f),
+                               aoHistory.next(graph, "ao-history", f), accumulated, "ao-accumulate");
+      graph::ImageHandle indirectRaw = traceIndirect(graph, in, gb), indirect = indirectRaw;
+      if (indirectOn(s))
+        indirect = accumulateRadiance(graph, in, indirectRaw, indirectHistory.previous(graph, "indirect-history", f),
+                                      indirectHistory.next(graph, "indirect-history", f), accumulated,
+                                      "indirect-accumulate");
+      graph::ImageHandle hdr = shadeLighting(graph, in, gb, {visibility, specular, ao, indirect, direct});
       if (s.taa)
         hdr = resolveTaa(graph, in,
                          {hdr, gb.depth, taaHistory.previous(graph, "taa-history", f),
@@ -346,7 +380,9 @@ struct Renderer::Impl {
         const std::map<std::string, graph::ImageHandle> stages = {
             {"depth", gb.depth},      {"normal", gb.normals},         {"albedo", gb.albedo},
             {"material", gb.material}, {"emissive", gb.emissive},     {"motion", gb.motion},     {"shadow-raw", raw},
-            {"shadow-denoised", visibility}, {"reflection-raw", specularRaw}, {"reflection-denoised", specular}};
+            {"shadow-denoised", visibility}, {"reflection-raw", specularRaw}, {"reflection-denoised", specular},
+            {"ao-raw", aoRaw},           {"ao-denoised", ao},             {"indirect-raw", indirectRaw},
+            {"indirect-denoised", indirect}};
         for (const std::string& name : s.aovs) {
           graph::ImageHandle h = stages.at(name);
           const rhi::ImageDesc& d = graph.imageDesc(h);

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,9 +49,23 @@ struct RenderSettings {
   // the pose at `time`.
   bool animate = true;
   float time = 0.0f;
+  // Glossy reflections (TECHNIQUES.md §11): first surfaces at most mirrorRoughness rough reflect as
+  // perfect mirrors (negative: none, every opaque reflection is VNDF-sampled); up to glossyThreshold
+  // one GGX VNDF sample per pixel; rougher ones fade to the environment approximation over 0.1.
+  float mirrorRoughness = 0.1f;
+  float glossyThreshold = 0.5f;
+  // Ray-traced ambient occlusion (TECHNIQUES.md §13) of ambient and environment light.
+  bool ao = true;
+  float aoRadius = -1.0f;  // world units; <= 0: kAoRadiusFraction × the scene bounds' diagonal
+  // One-bounce ray-traced indirect diffuse; unset: the scene's indirectByDefault.
+  std::optional<bool> indirect;
   // Called after each frame with (frames done, frames in all), e.g. to show progress.
   std::function<void(uint32_t, uint32_t)> progress;
 };
+
+// The default AO radius as a fraction of the scene's bounding-box diagonal: large enough for contact
+// and crease shadows between objects, short of darkening whole rooms.
+inline constexpr float kAoRadiusFraction = 0.1f;
 
 struct PassStats {
   std::string name;

@@ -63,6 +63,10 @@ void main() {
   s.metallic = mat.g;
   s.transmission = mat.b;
   s.emissive = vec3(0.0);
+  s.tracedWeight = tracedSpecularWeight(s.roughness, s.transmission);
+  s.envOcclusion = 1.0;  // direct light only: AO never applies to it
+  s.useIndirect = false;
+  s.indirect = vec3(0.0);
   uint rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kShadowStream);
   vec3 direct = shadeDirect(s, shadingTerms(s), rng);
   // A bright but finite clamp: a rare pick of a weak light far away must not become a firefly NaN.

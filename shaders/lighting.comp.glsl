@@ -6,10 +6,13 @@
 #include "lib/brdf.glsl"
 #include "lib/textures.glsl"
 #include "lib/environment.glsl"
+#include "lib/dfg.glsl"
 
 // Deferred lighting: shadeSurface() (lib/shading.glsl, shared with the bounce loop) with the
 // ray-traced shadow visibility (or, with many lights, the stochastic direct light of direct.rgen),
-// plus the traced specular light of mirrors, metals and glass.
+// ray-traced AO (ambient and environment light only) and one-bounce indirect diffuse irradiance,
+// plus the traced specular light of mirrors, glossy surfaces and glass (opaque surfaces:
+// demodulated lobe-average radiance, × F0·A + B here, TECHNIQUES.md §11).
 // Output: linear HDR radiance (RGBA16F).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 1) uniform sampler2D depthTex;
@@ -20,7 +23,9 @@ layout(set = 0, binding = 5) uniform sampler2D emissiveTex;
 layout(set = 0, binding = 6) uniform sampler2DArray visibilityTex;
 layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D outColor;
 layout(set = 0, binding = 8) uniform sampler2D specularTex;
-layout(set = 0, binding = 9) uniform sampler2D directTex;  // many-light mode: stochastic direct light
+layout(set = 0, binding = 9) uniform sampler2DArray aoTex;  // 1 unoccluded; written 1 when AO is off
+layout(set = 0, binding = 10) uniform sampler2D indirectTex;  // rgb: irradiance E; read when kEffectIndirect
+layout(set = 0, binding = 11) uniform sampler2D directTex;  // many-light mode: stochastic direct light
 
 ivec2 gPixel;
 
@@ -55,9 +60,19 @@ void main() {
   s.metallic = mat.g;
   s.transmission = mat.b;
   s.emissive = texelFetch(emissiveTex, px, 0).rgb;
+  s.tracedWeight = tracedSpecularWeight(s.roughness, s.transmission);
+  s.envOcclusion = texelFetch(aoTex, ivec3(px, 0), 0).r;
+  s.useIndirect = (frame.effectFlags & kEffectIndirect) != 0u;
+  s.indirect = s.useIndirect ? texelFetch(indirectTex, px, 0).rgb : vec3(0.0);
   uint rng = 0u;  // visibility comes from the shadow image: no random numbers needed here
+  vec3 traced = texelFetch(specularTex, px, 0).rgb;
+  // Glass writes radiance; opaque surfaces the lobe average, remodulated by the lobe's albedo.
+  if (s.transmission <= 0.0) {
+    vec3 f0 = mix(vec3(0.04), s.baseColor, s.metallic);
+    traced *= specularAlbedo(f0, max(dot(s.n, s.v), 1e-4), s.roughness);
+  }
   bool many = frame.manyLights != 0u;
-  vec3 radiance = shadeSurface(s, !many, rng) + texelFetch(specularTex, px, 0).rgb;
+  vec3 radiance = shadeSurface(s, !many, rng) + s.tracedWeight * traced;
   if (many) radiance += texelFetch(directTex, px, 0).rgb;
   imageStore(outColor, px, vec4(radiance, 1.0));
 }

@@ -37,12 +37,8 @@ void main() {
     imageStore(outVisibility, ivec3(px, layer), vec4(0.0));
     return;
   }
-  // Offset along the geometric normal, by more than both the float spacing at P and the error of
-  // reconstructing P from a quantised depth (one depth ulp moves P by ~z²·ulp/near along the view
-  // ray: far from the camera that exceeds a fixed epsilon and curved surfaces shadow themselves).
-  float nextDepth = uintBitsToFloat(floatBitsToUint(depth) + 1u);
-  float depthError = distance(p, worldFromDepth(frame.worldFromClip, uv, nextDepth));
-  float eps = max(max(max(abs(p.x), max(abs(p.y), abs(p.z))), 1.0) * 1e-4, 4.0 * depthError);
+  // Offset along the geometric normal, by more than the error of P reconstructed from depth.
+  float eps = gbufferRayOffset(frame.worldFromClip, uv, depth, p);
   vec3 origin = p + ng * eps;
   visible = 0u;
   // Opaque (no any-hit) only when no geometry needs alpha testing (TECHNIQUES.md §4).

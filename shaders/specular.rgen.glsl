@@ -11,9 +11,12 @@
 #include "lib/light_select.glsl"
 #include "lib/brdf.glsl"
 #include "lib/environment.glsl"
+#include "lib/dfg.glsl"
+#include "shared/vndf.h"
 
-// Ray-traced reflections and refractions (TECHNIQUES.md §10): from every G-buffer pixel whose
-// material is a mirror, metal or glass, a loop in raygen (no recursion) follows the specular path
+// Ray-traced reflections and refractions (TECHNIQUES.md §10, §11): from every G-buffer pixel whose
+// material is a mirror, glossy (one GGX VNDF sample per pixel up to the glossy threshold) or glass,
+// a loop in raygen (no recursion) follows the specular path
 // up to kMaxDepth bounces: Fresnel between reflection and refraction (chosen stochastically, so the
 // estimate is unbiased and converges over frames), total internal reflection, η by side,
 // Beer–Lambert absorption inside volumes, thin walls. Every hit is shaded by shadeSurface(), the
@@ -90,11 +93,41 @@ void scatter(inout vec3 dir, inout vec3 origin, inout vec3 beta, vec3 p, vec3 n,
   dir = normalize(next);
 }
 
+// The reflection off an opaque G-buffer surface, demodulated (TECHNIQUES.md §11): no Fresnel (lighting
+// applies F0·A + B). At most mirrorRoughness rough: the mirror direction, weight 1; rougher: one GGX
+// VNDF sample (Heitz 2018) weighted G2/G1 / (A + B), whose mean is 1. False when the sample leaves
+// below the surface (weight 0).
+bool firstReflection(inout vec3 dir, out vec3 origin, out vec3 beta, vec3 p, vec3 n, vec3 ng, float roughness,
+                     uvec2 px) {
+  vec3 next;
+  beta = vec3(1.0);
+  if (roughness <= frame.mirrorRoughness) {
+    next = reflect(dir, n);
+  } else {
+    // Its own stream: the rest of the path draws the same numbers as the mirror path would.
+    uint lobeRng = rngInit(px, frame.frameIndex, frame.seed ^ kGlossyStream);
+    vec3 t, b;
+    orthonormalBasis(n, t, b);
+    vec3 v = -dir;
+    vec3 vt = normalize(vec3(dot(v, t), dot(v, b), max(dot(v, n), 1e-4)));  // tangent frame, N = +z
+    float alpha = roughness * roughness;
+    vec3 h = sampleGgxVndf(vt, alpha, vec2(rnd(lobeRng), rnd(lobeRng)));
+    vec3 lt = reflect(-vt, h);
+    if (lt.z <= 0.0) return false;
+    vec2 ab = dfgTerms(max(dot(n, v), 1e-4), roughness);
+    beta = vec3(smithG2OverG1(vt.z, lt.z, alpha) / max(ab.x + ab.y, 1e-4));
+    next = t * lt.x + b * lt.y + n * lt.z;
+  }
+  origin = p + (dot(next, ng) > 0.0 ? ng : -ng) * offsetFor(p);
+  dir = normalize(next);
+  return true;
+}
+
 void main() {
   ivec2 px = ivec2(gl_LaunchIDEXT.xy);
   float depth = texelFetch(depthTex, px, 0).r;
   vec4 mat = texelFetch(materialTex, px, 0);
-  if (isBackground(depth) || !tracedSpecular(mat.r, mat.b)) {
+  if (isBackground(depth) || tracedSpecularWeight(mat.r, mat.b) <= 0.0) {
     imageStore(outSpecular, px, vec4(0.0));
     return;
   }
@@ -116,7 +149,12 @@ void main() {
   // The G-buffer surface: P comes from quantised depth, so step off by its reconstruction error.
   float nextDepth = uintBitsToFloat(floatBitsToUint(depth) + 1u);
   float depthError = distance(p, worldFromDepth(frame.worldFromClip, uv, nextDepth));
-  scatter(dir, origin, beta, p, n, ng, true, baseColor, mat.g, mat.b, ior, thin, rng);
+  if (mat.b > 0.0) {
+    scatter(dir, origin, beta, p, n, ng, true, baseColor, mat.g, mat.b, ior, thin, rng);
+  } else if (!firstReflection(dir, origin, beta, p, n, ng, mat.r, uvec2(px))) {
+    imageStore(outSpecular, px, vec4(0.0, 0.0, 0.0, 1.0));  // the sample left below the surface
+    return;
+  }
   origin += (origin - p) / max(length(origin - p), 1e-12) * 4.0 * depthError;
 
   for (uint bounce = 1u; bounce < kMaxDepth; ++bounce) {
@@ -148,6 +186,10 @@ void main() {
     s.transmission = gb.material.b;
     s.ao = gb.albedo.a;
     s.emissive = gb.emissive.rgb;
+    s.tracedWeight = tracedSpecular(s.roughness, s.transmission) ? 1.0 : 0.0;
+    s.envOcclusion = 1.0;  // no AO at hits
+    s.useIndirect = false;
+    s.indirect = vec3(0.0);
     radiance += beta * shadeSurface(s, true, rng);
     if (!tracedSpecular(s.roughness, s.transmission)) break;  // rough: fully shaded, the path ends
     scatter(dir, origin, beta, s.p, s.n, s.ng, entering, s.baseColor, s.metallic, s.transmission, m.ior, thinHit,

@@ -6,8 +6,8 @@
 namespace rayster::render {
 
 graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                 graph::ImageHandle visibility, graph::ImageHandle specular,
-                                 graph::ImageHandle direct) {
+                                 const LightingInputs& inputs) {
+  const auto [visibility, specular, ao, indirect, direct] = inputs;
   // Without many-light direct light the binding still needs an image; the shader does not read it.
   const graph::ImageHandle directOrUnused = direct.valid() ? direct : specular;
   graph::ImageHandle hdr = graph.createImage(
@@ -16,11 +16,12 @@ graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& i
   graph.addPass(
       "lighting",
       [&](graph::PassBuilder& b) {
-        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, visibility, specular, directOrUnused})
+        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, visibility, specular, ao, indirect,
+                       directOrUnused})
           b.read(h, graph::Use::SampledCompute);
         b.write(hdr, graph::Use::StorageWriteCompute);
       },
-      [gb, visibility, specular, directOrUnused, hdr, &in](graph::PassContext& pc) {
+      [gb, visibility, specular, ao, indirect, directOrUnused, hdr, &in](graph::PassContext& pc) {
         const rhi::Pipeline& pipe = in.pipelines.lighting;
         VkSampler s = in.nearest.handle();
         vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
@@ -34,7 +35,9 @@ graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& i
             .sampledImage(6, pc.image(visibility).view(), s)
             .storageImage(7, pc.image(hdr).view())
             .sampledImage(8, pc.image(specular).view(), s)
-            .sampledImage(9, pc.image(directOrUnused).view(), s)
+            .sampledImage(9, pc.image(ao).view(), s)
+            .sampledImage(10, pc.image(indirect).view(), s)
+            .sampledImage(11, pc.image(directOrUnused).view(), s)
             .push(pc.cmd, pipe);
         bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.layout());
         vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);

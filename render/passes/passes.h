@@ -50,24 +50,40 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in);
 
 // One visibility layer per shadowed light (R16F array), 1 sample per pixel.
 graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t lights);
-// Running mean over frames: reads `history` (holding `samples` samples), writes `next`.
+// Running mean over frames: reads `history` (holding `samples` samples), writes `next`. Any R16F
+// array of visibility-like values (shadows, AO); `name` labels the pass.
 graph::ImageHandle accumulateShadows(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle raw,
-                                     graph::ImageHandle history, graph::ImageHandle next, uint32_t samples);
+                                     graph::ImageHandle history, graph::ImageHandle next, uint32_t samples,
+                                     const char* name = "shadow-accumulate");
 
 // Reflections and refractions of mirror, metal and glass pixels (RGBA16F radiance, 0 elsewhere).
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
 // Running mean of a radiance image over frames: reads `history` (holding `samples`), writes `next`.
 graph::ImageHandle accumulateRadiance(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle raw,
-                                      graph::ImageHandle history, graph::ImageHandle next, uint32_t samples);
+                                      graph::ImageHandle history, graph::ImageHandle next, uint32_t samples,
+                                      const char* name = "specular-accumulate");
+
+// Ambient occlusion (one-layer R16F array, 1 unoccluded), 1 sample per pixel; 1 everywhere when
+// FrameConstants::effectFlags lacks kEffectAo.
+graph::ImageHandle traceAo(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
+// One-bounce indirect diffuse irradiance E (RGBA16F, demodulated), 1 sample per pixel; 0 when
+// FrameConstants::effectFlags lacks kEffectIndirect.
+graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
 
 // Many lights: direct light from one importance-picked light per pixel, with its shadow ray
 // (RGBA16F radiance).
 graph::ImageHandle traceDirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
 
-// `direct`: the many-light direct radiance, or an invalid handle when every light has a layer.
+// What the lighting pass combines with the G-buffer.
+struct LightingInputs {
+  graph::ImageHandle visibility;  // shadow layers (R16F array)
+  graph::ImageHandle specular;    // traced reflections/refractions (RGBA16F)
+  graph::ImageHandle ao;          // RT ambient occlusion (R16F array, one layer)
+  graph::ImageHandle indirect;    // one-bounce indirect irradiance E (RGBA16F)
+  graph::ImageHandle direct;      // many-light direct radiance; invalid when every light has a layer
+};
 graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                 graph::ImageHandle visibility, graph::ImageHandle specular,
-                                 graph::ImageHandle direct = {});
+                                 const LightingInputs& inputs);
 // TAA resolve: blends `current` with the reprojected `history` and writes `next` (the output).
 inline constexpr float kTaaCurrentWeight = 0.1f;  // steady-state weight of the current frame (the book)
 struct TaaInputs {

@@ -34,9 +34,10 @@ graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in
 }
 
 graph::ImageHandle accumulateShadows(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle raw,
-                                     graph::ImageHandle history, graph::ImageHandle next, uint32_t samples) {
+                                     graph::ImageHandle history, graph::ImageHandle next, uint32_t samples,
+                                     const char* name) {
   graph.addPass(
-      "shadow-accumulate",
+      name,
       [&](graph::PassBuilder& b) {
         b.read(raw, graph::Use::StorageReadCompute);
         b.read(history, graph::Use::StorageReadCompute);

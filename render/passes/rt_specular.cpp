@@ -37,9 +37,10 @@ graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& i
 }
 
 graph::ImageHandle accumulateRadiance(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle raw,
-                                      graph::ImageHandle history, graph::ImageHandle next, uint32_t samples) {
+                                      graph::ImageHandle history, graph::ImageHandle next, uint32_t samples,
+                                      const char* name) {
   graph.addPass(
-      "specular-accumulate",
+      name,
       [&](graph::PassBuilder& b) {
         b.read(raw, graph::Use::StorageReadCompute);
         b.read(history, graph::Use::StorageReadCompute);

@@ -57,6 +57,9 @@ float rnd(inout uint state) {
 const uint kShadowStream = 0x51A0u;
 const uint kAlphaStream = 0xA1FAu;
 const uint kSpecularStream = 0x5BEC0u;
+const uint kGlossyStream = 0x6A055u;  // the first glossy lobe sample only: α = 0 then traces the mirror path's noise
+const uint kAoStream = 0xA0A0u;
+const uint kIndirectStream = 0x1D1Eu;
 
 // Branchless orthonormal basis (Duff et al. 2017).
 void orthonormalBasis(vec3 n, out vec3 t, out vec3 b) {
@@ -67,6 +70,27 @@ void orthonormalBasis(vec3 n, out vec3 t, out vec3 b) {
   b = vec3(c, s + n.y * n.y * a, -n.y);
 }
 
+// A cosine-weighted direction about n (concentric disk lifted to the hemisphere, Shirley & Chiu):
+// with it, the mean of a visibility is its cosine-weighted fraction and π·mean(L) the irradiance.
+vec3 cosineSampleHemisphere(vec3 n, vec2 u) {
+  vec2 d = 2.0 * u - 1.0;
+  vec2 disk = vec2(0.0);
+  if (d.x != 0.0 || d.y != 0.0) {
+    float r, phi;
+    if (abs(d.x) > abs(d.y)) {
+      r = d.x;
+      phi = (kPi / 4.0) * (d.y / d.x);
+    } else {
+      r = d.y;
+      phi = (kPi / 2.0) - (kPi / 4.0) * (d.x / d.y);
+    }
+    disk = r * vec2(cos(phi), sin(phi));
+  }
+  vec3 t, b;
+  orthonormalBasis(n, t, b);
+  return normalize(t * disk.x + b * disk.y + n * sqrt(max(0.0, 1.0 - dot(disk, disk))));
+}
+
 // Depth is reversed (near plane 1, far plane 0): float precision then stays relative at every
 // distance, so positions reconstructed from depth are exact enough to start shadow rays from.
 const float kBackgroundDepth = 0.0;
@@ -75,6 +99,16 @@ bool isBackground(float depth) { return depth <= kBackgroundDepth; }
 vec3 worldFromDepth(mat4 worldFromClip, vec2 uv, float depth) {
   vec4 p = worldFromClip * vec4(uv * 2.0 - 1.0, depth, 1.0);
   return p.xyz / p.w;
+}
+
+// Ray origin for a G-buffer surface: along the geometric normal by more than both the float spacing
+// at P and the error of reconstructing P from a quantised depth (one depth ulp moves P by
+// ~z²·ulp/near along the view ray: far from the camera that exceeds a fixed epsilon and curved
+// surfaces shadow themselves).
+float gbufferRayOffset(mat4 worldFromClip, vec2 uv, float depth, vec3 p) {
+  float nextDepth = uintBitsToFloat(floatBitsToUint(depth) + 1u);
+  float depthError = distance(p, worldFromDepth(worldFromClip, uv, nextDepth));
+  return max(max(max(abs(p.x), max(abs(p.y), abs(p.z))), 1.0) * 1e-4, 4.0 * depthError);
 }
 
 #endif

@@ -6,13 +6,23 @@
 #ifndef RAYSTER_SHADING_GLSL
 #define RAYSTER_SHADING_GLSL
 
-// Surfaces this smooth, and all transmissive ones, get their specular light from traced rays
-// (the bounce loop); rougher ones from the light sources and the environment map. Glossy
-// reflections with VNDF sampling and a denoiser replace this split later (TECHNIQUES.md §11).
+// Hits of the bounce loop this smooth, and all transmissive ones, continue the specular path;
+// rougher hits end it, shaded here.
 const float kMirrorRoughness = 0.1;
+// First surfaces rougher than FrameConstants::glossyThreshold fade from traced glossy reflections to
+// the environment approximation over this much roughness, so no seam shows (TECHNIQUES.md §11).
+const float kGlossyBlend = 0.1;
 
 bool tracedSpecular(float roughness, float transmission) {
   return roughness <= kMirrorRoughness || transmission > 0.0;
+}
+
+// How much of a G-buffer surface's specular light the specular pass traces (mirror, glass, glossy:
+// 1; past the glossy threshold it fades to 0); the rest comes from light sources and the
+// environment approximation.
+float tracedSpecularWeight(float roughness, float transmission) {
+  if (transmission > 0.0 || roughness <= frame.mirrorRoughness) return 1.0;
+  return 1.0 - clamp((roughness - frame.glossyThreshold) / kGlossyBlend, 0.0, 1.0);
 }
 
 struct ShadingInput {
@@ -24,14 +34,18 @@ struct ShadingInput {
   float metallic;
   float roughness;
   float transmission;
-  float ao;
+  float ao;            // the material's occlusion texture
   vec3 emissive;
+  float tracedWeight;  // share of the specular light traced elsewhere (tracedSpecularWeight()); not added here
+  float envOcclusion;  // ray-traced AO: scales ambient and environment light only, never direct light
+  bool useIndirect;    // diffuse indirect light is `indirect` (RT one bounce), not ambient + SH environment
+  vec3 indirect;       // irradiance E of the diffuse indirect light, when useIndirect
 };
 
 struct ShadingTerms {
   SurfaceBsdf bsdf;
-  bool traced;  // specular from traced rays, not from the light sources
-  vec3 fv;      // directional specular albedo (Fresnel at the view angle)
+  float w;  // share of the specular light traced elsewhere (s.tracedWeight)
+  vec3 fv;  // directional specular albedo (Fresnel at the view angle)
 };
 
 ShadingTerms shadingTerms(ShadingInput s) {
@@ -39,7 +53,7 @@ ShadingTerms shadingTerms(ShadingInput s) {
   t.bsdf = makeBsdf(s.baseColor, s.metallic, s.roughness);
   // Transmitted light leaves through the specular path; what is left scatters diffusely.
   t.bsdf.diffuse *= 1.0 - s.transmission;
-  t.traced = tracedSpecular(s.roughness, s.transmission);
+  t.w = s.tracedWeight;
   float nv = max(dot(s.n, s.v), 1e-4);
   t.fv = t.bsdf.f0 + (max(vec3(1.0 - s.roughness), t.bsdf.f0) - t.bsdf.f0) * pow(1.0 - nv, 5.0);
   return t;
@@ -54,14 +68,12 @@ vec3 shadeLight(ShadingInput s, ShadingTerms t, uint i, inout uint rng) {
   if (all(equal(incident, vec3(0.0)))) return vec3(0.0);
   float visibility = lightVisibility(i, s.p, s.ng, rng);
   if (visibility <= 0.0) return vec3(0.0);
-  vec3 f;
-  if (t.traced) {
-    // The traced reflection already sees the light's visible shape: only the diffuse layer here.
-    float nl = max(dot(s.n, l), 0.0);
-    f = (1.0 - t.fv) * t.bsdf.diffuse / kPi * nl;
-  } else {
+  // The traced reflection already sees the light's visible shape: only the diffuse layer for its share.
+  float nl = max(dot(s.n, l), 0.0);
+  vec3 f = t.w * (1.0 - t.fv) * t.bsdf.diffuse / kPi * nl;
+  if (t.w < 1.0) {
     float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
-    f = evalBsdfCos(t.bsdf, s.n, s.v, l, 0.5 * widen);
+    f += (1.0 - t.w) * evalBsdfCos(t.bsdf, s.n, s.v, l, 0.5 * widen);
   }
   return f * incident * visibility;
 }
@@ -85,19 +97,24 @@ vec3 shadeDirect(ShadingInput s, ShadingTerms t, inout uint rng) {
 vec3 shadeSurface(ShadingInput s, bool direct, inout uint rng) {
   ShadingTerms t = shadingTerms(s);
   SurfaceBsdf bsdf = t.bsdf;
-  const bool traced = t.traced;
+  const float w = t.w;
   vec3 fv = t.fv;
-  vec3 radiance = s.emissive + frame.ambient.rgb * (bsdf.diffuse + (traced ? vec3(0.0) : bsdf.f0)) * s.ao;
+  float occlusion = s.ao * s.envOcclusion;
+
+  // Uniform ambient radiance stands in for indirect light: the traced indirect replaces its diffuse part.
+  vec3 ambientReflectance = (s.useIndirect ? vec3(0.0) : bsdf.diffuse) + (1.0 - w) * bsdf.f0;
+  vec3 radiance = s.emissive + frame.ambient.rgb * ambientReflectance * occlusion;
   if (direct) radiance += shadeDirect(s, t, rng);
-  // Unshadowed environment light until ray-traced AO exists: diffuse from the SH irradiance,
-  // specular (for surfaces the bounce loop does not handle) along the mirror direction, blurred
-  // towards the irradiance as roughness grows.
+  // Diffuse: from the traced indirect rays (their misses see the environment, so the SH term would
+  // count it twice), else the SH irradiance scaled by AO. Specular (the untraced share) along the
+  // mirror direction, blurred towards the irradiance as roughness grows, scaled by AO.
+  if (s.useIndirect) radiance += bsdf.diffuse * s.indirect / kPi * (1.0 - fv) * s.ao;
   if (frame.environmentKind != kEnvironmentBlack) {
-    radiance += bsdf.diffuse * environmentIrradiance(s.n) / kPi * (1.0 - fv) * s.ao;
-    if (!traced) {
+    if (!s.useIndirect) radiance += bsdf.diffuse * environmentIrradiance(s.n) / kPi * (1.0 - fv) * occlusion;
+    if (w < 1.0) {
       vec3 r = reflect(-s.v, s.n);
       vec3 specularEnv = mix(environmentRadiance(r), environmentIrradiance(r) / kPi, s.roughness);
-      radiance += fv * specularEnv * s.ao;
+      radiance += (1.0 - w) * fv * specularEnv * occlusion;
     }
   }
   return radiance;

@@ -27,6 +27,7 @@ RAYSTER_CONST uint kLightSpot = 1u;
 RAYSTER_CONST uint kLightDirectional = 2u;
 
 RAYSTER_CONST uint kMaxShadowLights = 8u;  // one visibility layer each
+RAYSTER_CONST uint kDfgSize = 32u;         // split-sum DFG table, kDfgSize² texels (render/dfg.h)
 RAYSTER_CONST uint kBackgroundId = 0xFFFFFFFFu;
 RAYSTER_CONST uint kNoTexture = 0xFFFFFFFFu;
 
@@ -49,6 +50,9 @@ RAYSTER_CONST uint kSceneAlphaTested = 1u;  // some geometry runs any-hit: rays 
 // Tonemap operators (tonemap.comp push constant; render::Tonemapper mirrors them in C++)
 RAYSTER_CONST uint kTonemapAces = 0u;
 RAYSTER_CONST uint kTonemapNeutral = 1u;
+// FrameConstants::effectFlags
+RAYSTER_CONST uint kEffectAo = 1u;        // ray-traced ambient occlusion scales ambient/environment light
+RAYSTER_CONST uint kEffectIndirect = 2u;  // one-bounce ray-traced indirect diffuse replaces ambient/env diffuse
 
 // Environment kinds (FrameConstants::environmentKind)
 RAYSTER_CONST uint kEnvironmentBlack = 0u;
@@ -169,7 +173,11 @@ struct FrameConstants {
   mat4 prevClipFromWorld;  // unjittered, the previous frame's (equal to the current one after a reset)
   vec2 jitter;             // NDC offset added to clip x/y per w this frame: (0, 0) without TAA
   uint manyLights;         // 1: one light per shading point by importance (lib/light_select.glsl)
-  uint pad3;
+  float mirrorRoughness;   // first surfaces at most this rough reflect as perfect mirrors (negative: none)
+  float glossyThreshold;   // up to this roughness reflections are traced with GGX VNDF samples (§11)
+  float aoRadius;          // RT AO ray length (world units)
+  uint effectFlags;        // kEffect* bits
+  uint dfgSlot;            // bindless slot of the split-sum DFG table (render/dfg.h)
 };
 
 #ifdef __cplusplus
@@ -190,7 +198,8 @@ static_assert(offsetof(FrameConstants, lights) == 424);
 static_assert(offsetof(FrameConstants, unjitteredClipFromWorld) == 432);
 static_assert(offsetof(FrameConstants, prevClipFromWorld) == 496);
 static_assert(offsetof(FrameConstants, jitter) == 560);
-static_assert(sizeof(FrameConstants) == 576);
+static_assert(offsetof(FrameConstants, mirrorRoughness) == 572);
+static_assert(sizeof(FrameConstants) == 592);
 } // namespace rayster::gpu
 #endif
 

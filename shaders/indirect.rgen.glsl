@@ -1,0 +1,91 @@
+#version 460
+#extension GL_EXT_ray_tracing : require
+#include "lib/common.glsl"
+#include "lib/frame.glsl"
+#include "lib/textures.glsl"
+#include "lib/surface.glsl"
+#include "lib/sphere.glsl"
+#include "lib/primary_payload.glsl"
+#include "lib/hit_surface.glsl"
+#include "lib/lights.glsl"
+#include "lib/light_select.glsl"
+#include "lib/brdf.glsl"
+#include "lib/environment.glsl"
+
+// One-bounce indirect diffuse from the G-buffer (TECHNIQUES.md §13): one cosine-weighted ray about
+// the shading normal per pixel per frame. A hit is shaded with its emission, direct light from one
+// light picked by importance (shadow ray, divided by the pick probability) and the environment's
+// SH irradiance (no AO at hits); a miss sees the environment.
+// Output (RGBA16F): rgb = E = π·L, one sample of the irradiance, demodulated (no albedo): lighting
+// applies albedo/π·E. Rays see shadow casters only, so a light's visible shape (which the lighting
+// pass already counts as direct light) is not counted again. Background and indirect off write 0.
+layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
+layout(set = 0, binding = 2) uniform sampler2D depthTex;
+layout(set = 0, binding = 3) uniform sampler2D normalTex;
+layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D outIndirect;
+
+layout(location = 0) rayPayloadEXT PrimaryPayload payload;
+layout(location = 1) rayPayloadEXT uint visible;
+
+uint baseRayFlags() { return (frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT; }
+
+// Direct light at a hit from one light chosen in proportion to its importance (lib/light_select.glsl:
+// exact over few lights, resampled candidates over many), divided by the probability of the pick.
+vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, inout uint rng) {
+  float invPdf;
+  uint chosen = selectLight(p, n, rng, invPdf);
+  if (chosen >= frame.lightCount) return vec3(0.0);
+  LightRecord light = Lights(frame.lights).l[chosen];
+  vec3 l;
+  float dist;
+  vec3 incident = lightIncident(light, p, l, dist);
+  float sampledDist;
+  vec3 dir = sampleLightDirection(light, p, vec2(rnd(rng), rnd(rng)), sampledDist);
+  if (dot(dir, ng) <= 0.0) return vec3(0.0);
+  float eps = max(max(abs(p.x), max(abs(p.y), abs(p.z))), 1.0) * 1e-4;
+  visible = 0u;
+  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | baseRayFlags(),
+              kMaskCastsShadow, 0, 0, 1, p + ng * eps, 0.0, dir, max(sampledDist - eps, 0.0), 1);
+  if (visible == 0u) return vec3(0.0);
+  float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
+  return evalBsdfCos(bsdf, n, v, l, 0.5 * widen) * incident * invPdf;
+}
+
+void main() {
+  ivec2 px = ivec2(gl_LaunchIDEXT.xy);
+  float depth = texelFetch(depthTex, px, 0).r;
+  if (isBackground(depth) || (frame.effectFlags & kEffectIndirect) == 0u) {
+    imageStore(outIndirect, px, vec4(0.0));
+    return;
+  }
+  vec2 uv = (vec2(px) + 0.5) / vec2(gl_LaunchSizeEXT.xy);
+  vec3 p = worldFromDepth(frame.worldFromClip, uv, depth);
+  vec4 nn = texelFetch(normalTex, px, 0);
+  vec3 n = octDecode(nn.xy), ng = octDecode(nn.zw);
+  uint rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kIndirectStream);
+  vec3 dir = cosineSampleHemisphere(n, vec2(rnd(rng), rnd(rng)));
+  if (dot(dir, ng) <= 0.0) {  // under the geometric surface: the surface itself blocks it
+    imageStore(outIndirect, px, vec4(0.0, 0.0, 0.0, 1.0));
+    return;
+  }
+  vec3 origin = p + ng * gbufferRayOffset(frame.worldFromClip, uv, depth, p);
+  payload.t = -1.0;
+  traceRayEXT(tlas, baseRayFlags(), kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+  vec3 radiance;
+  if (payload.t < 0.0) {
+    radiance = environmentRadiance(dir);
+  } else {
+    SurfacePoint sp;
+    MaterialRecord m;
+    surfaceAtHit(payload, origin, dir, sp, m);
+    GBufferValues gb = evaluateSurface(m, sp, origin);  // normals face the ray's origin
+    vec3 hn = octDecode(gb.normals.xy), hng = octDecode(gb.normals.zw);
+    SurfaceBsdf bsdf = makeBsdf(srgbToLinear(gb.albedo.rgb), gb.material.g, gb.material.r);
+    bsdf.diffuse *= 1.0 - gb.material.b;
+    radiance = gb.emissive.rgb + directFromOneLight(bsdf, sp.position, hn, hng, -dir, rng);
+    vec3 environmentDiffuse = environmentIrradiance(hn) + frame.ambient.rgb * kPi;
+    radiance += bsdf.diffuse / kPi * environmentDiffuse * gb.albedo.a;
+  }
+  // E = π·L for a cosine-weighted sample; clamp rare fireflies to a bright but finite value.
+  imageStore(outIndirect, px, vec4(min(kPi * radiance, vec3(256.0)), 1.0));
+}
