@@ -5,7 +5,6 @@
 #include <cstring>
 #include <deque>
 #include <map>
-#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -14,6 +13,7 @@
 #include "graph/graph.h"
 #include "render/gpu_scene.h"
 #include "render/history.h"
+#include "render/passes/denoise.h"
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
 #include "rhi/commands.h"
@@ -24,9 +24,15 @@
 namespace rayster::render {
 
 const std::vector<std::string>& aovNames() {
-  static const std::vector<std::string> names = {"depth",       "normal",         "albedo",          "material",
-                                                 "emissive",    "shadow-raw",     "shadow-denoised", "reflection-raw",
-                                                 "reflection-denoised"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n = {"depth",          "normal",          "albedo",        "material",
+                                  "emissive",       "shadow-raw",      "shadow-denoised", "reflection-raw",
+                                  "reflection-denoised"};
+    // Per shadowed light: layer i of the visibility arrays ("shadow-raw" is layer 0).
+    for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-raw");
+    for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-denoised");
+    return n;
+  }();
   return names;
 }
 
@@ -81,7 +87,9 @@ struct Renderer::Impl {
   graph::TransientPool transients;
   rhi::CommandList commands;
   rhi::TimestampPool timers;
-  History shadowHistory, specularHistory;
+  // Temporal state of the denoisers: the surface (disocclusion tests), shadow means, SVGF colour
+  // and moments of the reflections.
+  History surfaceHistory, shadowHistory, specularColorHistory, specularMomentsHistory;
   uint32_t frameIndex = 0;
 
   Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
@@ -127,15 +135,11 @@ struct Renderer::Impl {
   }
 
   void ensureHistory(const RenderSettings& s) {
-    shadowHistory.ensure(ctx,
-                         {kVisibilityHistoryFormat, s.width, s.height, std::max(shadowLights(), 1u),
-                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, true},
-                         "shadow-history");
-    specularHistory.ensure(
-        ctx,
-        {kRadianceHistoryFormat, s.width, s.height, 1,
-         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
-        "specular-history");
+    const VkExtent2D size{s.width, s.height};
+    surfaceHistory.ensure(ctx, surfaceDesc(size), "surface-history");
+    shadowHistory.ensure(ctx, shadowHistoryDesc(size, shadowLights()), "shadow-history");
+    specularColorHistory.ensure(ctx, svgfColorHistoryDesc(size), "specular-history");
+    specularMomentsHistory.ensure(ctx, svgfMomentsHistoryDesc(size), "specular-moments");
   }
 
   // Times one G-buffer producer alone: a warm-up frame, then a measured one.
@@ -206,7 +210,13 @@ struct Renderer::Impl {
     rhi::Buffer ldrReadback(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
     rhi::Buffer hdrReadback(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "hdr-readback");
     graph::ResourceState ldrState, hdrState;
-    std::vector<std::tuple<std::string, VkFormat, rhi::Buffer>> aovReadback;
+    struct AovReadback {
+      std::string name;
+      VkFormat format;
+      uint32_t layer;
+      rhi::Buffer buffer;
+    };
+    std::vector<AovReadback> aovReadback;
     std::deque<graph::ResourceState> aovStates;  // stable addresses for the graph
     for (const std::string& name : s.aovs)
       if (std::find(aovNames().begin(), aovNames().end(), name) == aovNames().end())
@@ -216,51 +226,76 @@ struct Renderer::Impl {
 
     for (uint32_t f = 0; f < s.frames; ++f) {
       frameIndex = f;
-      writeConstants(s, s.cameraPath ? cameraOnPath(*cam, s, f) : *cam);
+      const scene::Camera frameCamera = s.cameraPath ? cameraOnPath(*cam, s, f) : *cam;
+      writeConstants(s, frameCamera);
       const bool last = f + 1 == s.frames;
       graph::RenderGraph graph(&ctx, &transients);
       FrameInputs in{pipelines, gpu, constants, nearest, {s.width, s.height}, gpu.bindless->set()};
 
       GBuffer gb = out.primaryUsed == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
+      // Every run starts without history (a camera cut does too); a camera path moves every frame.
+      const TemporalState temporal{s.cameraPath, f == 0 || !surfaceHistory.valid};
+      const DenoiseInputs dn{pipelines.denoise, nearest.handle(), in.size};
+      const SurfacePair surface{
+          writeSurface(graph, dn, gb.depth, gb.normals, gb.id, surfaceHistory.next(graph, "surface", f),
+                       frameCamera.zNear, frameCamera.zFar),
+          surfaceHistory.previous(graph, "surface", f)};
+      // Interim: no motion vectors in the G-buffer yet (static scenes); gb.motion replaces this.
+      const graph::ImageHandle motion = zeroMotion(graph, in.size);
+
       graph::ImageHandle raw = traceShadows(graph, in, gb, shadowLights());
-      graph::ImageHandle prev = shadowHistory.previous(graph, "shadow-history", f);
-      graph::ImageHandle next = shadowHistory.next(graph, "shadow-history", f);
-      // A moving camera invalidates the history: until reprojection exists, each frame stands alone.
-      graph::ImageHandle visibility = accumulateShadows(graph, in, raw, prev, next, s.cameraPath ? 0 : f);
+      const ShadowDenoised shadows =
+          denoiseShadows(graph, dn, surface, motion, raw,
+                         {shadowHistory.previous(graph, "shadow-history", f), shadowHistory.next(graph, "shadow-history", f)},
+                         temporal);
+      graph::ImageHandle visibility = shadows.denoised;
       graph::ImageHandle specularRaw = traceSpecular(graph, in, gb);
-      graph::ImageHandle specularPrev = specularHistory.previous(graph, "specular-history", f);
-      graph::ImageHandle specularNext = specularHistory.next(graph, "specular-history", f);
-      graph::ImageHandle specular =
-          accumulateRadiance(graph, in, specularRaw, specularPrev, specularNext, s.cameraPath ? 0 : f);
+      const RadianceDenoised reflections = denoiseRadiance(
+          graph, dn, "reflection", surface, motion, gb.material, specularRaw,
+          {specularColorHistory.previous(graph, "specular-history", f), specularColorHistory.next(graph, "specular-history", f)},
+          {specularMomentsHistory.previous(graph, "specular-moments", f),
+           specularMomentsHistory.next(graph, "specular-moments", f)},
+          temporal);
+      graph::ImageHandle specular = reflections.denoised;
       graph::ImageHandle hdr = shadeLighting(graph, in, gb, visibility, specular);
       graph::ImageHandle ldr = tonemap(graph, in, hdr, std::exp2(s.exposureEv), s.seed);
       if (last) {
         readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));
         readback(graph, hdr, graph.importBuffer("hdr-readback", &hdrReadback, &hdrState));
         // "denoised" stages are the temporal accumulation until the denoisers exist.
-        const std::map<std::string, graph::ImageHandle> stages = {
-            {"depth", gb.depth},      {"normal", gb.normals},         {"albedo", gb.albedo},
-            {"material", gb.material}, {"emissive", gb.emissive},     {"shadow-raw", raw},
-            {"shadow-denoised", visibility}, {"reflection-raw", specularRaw}, {"reflection-denoised", specular}};
+        // Stage → (image, layer); the visibility arrays hold one layer per shadowed light.
+        std::map<std::string, std::pair<graph::ImageHandle, uint32_t>> stages = {
+            {"depth", {gb.depth, 0}},       {"normal", {gb.normals, 0}},          {"albedo", {gb.albedo, 0}},
+            {"material", {gb.material, 0}}, {"emissive", {gb.emissive, 0}},       {"shadow-raw", {raw, 0}},
+            {"shadow-denoised", {visibility, 0}}, {"reflection-raw", {specularRaw, 0}},
+            {"reflection-denoised", {specular, 0}}};
+        for (uint32_t i = 0; i < shadowLights(); ++i) {
+          stages["shadow" + std::to_string(i) + "-raw"] = {raw, i};
+          stages["shadow" + std::to_string(i) + "-denoised"] = {visibility, i};
+        }
         for (const std::string& name : s.aovs) {
-          graph::ImageHandle h = stages.at(name);
-          const rhi::ImageDesc& d = graph.imageDesc(h);
-          // Layer 0 only: the first shadowed light.
-          aovReadback.emplace_back(name, d.format,
-                                   rhi::Buffer(ctx, size_t(d.width) * d.height * texelBytes(d.format) * d.layers,
-                                               VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
-                                               "aov-readback"));
+          auto it = stages.find(name);
+          if (it == stages.end()) {  // a light the scene does not have
+            log::info("AOV '{}' skipped: the scene has {} shadowed light(s)", name, shadowLights());
+            continue;
+          }
+          const rhi::ImageDesc& d = graph.imageDesc(it->second.first);
+          aovReadback.push_back({name, d.format, it->second.second,
+                                 rhi::Buffer(ctx, size_t(d.width) * d.height * texelBytes(d.format) * d.layers,
+                                             VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
+                                             "aov-readback")});
           aovStates.emplace_back();
         }
         for (size_t i = 0; i < aovReadback.size(); ++i)
-          readback(graph, stages.at(std::get<0>(aovReadback[i])),
-                   graph.importBuffer("aov-readback", &std::get<2>(aovReadback[i]), &aovStates[i]));
+          readback(graph, stages.at(aovReadback[i].name).first,
+                   graph.importBuffer("aov-readback", &aovReadback[i].buffer, &aovStates[i]));
       }
 
       VkCommandBuffer cmd = commands.begin();
       timers.reset(cmd);
       graph.execute(cmd, &timers);
       ctx.wait(commands.submit());
+      for (History* h : {&surfaceHistory, &shadowHistory, &specularColorHistory, &specularMomentsHistory}) h->valid = true;
       for (auto& t : timers.read()) {
         if (t.name == "readback" || t.name == "host-visible") continue;
         if (!passTimes.count(t.name)) passOrder.push_back(t.name);
@@ -280,9 +315,9 @@ struct Renderer::Impl {
     out.hdr = ImageF::make(int(s.width), int(s.height));
     const uint16_t* halves = static_cast<const uint16_t*>(hdrReadback.mapped());
     for (size_t i = 0; i < pixels * 4; ++i) out.hdr.rgba[i] = halfToFloat(halves[i]);
-    for (auto& [name, format, buffer] : aovReadback) {
+    for (auto& [name, format, layer, buffer] : aovReadback) {
       ImageF img = ImageF::make(int(s.width), int(s.height));
-      const uint8_t* data = static_cast<const uint8_t*>(buffer.mapped());
+      const uint8_t* data = static_cast<const uint8_t*>(buffer.mapped()) + size_t(layer) * pixels * texelBytes(format);
       for (size_t i = 0; i < pixels; ++i)
         for (int c = 0; c < 4; ++c) img.rgba[i * 4 + c] = texel(data, format, i, c);
       out.aovs.emplace_back(name, std::move(img));
