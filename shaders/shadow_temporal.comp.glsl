@@ -7,6 +7,7 @@
 // means, layer L the history length n (fp32, so the static running mean stays exact).
 //   α = max(1/(1+n), αmin); static: αmin = 0, no clamp; moving: αmin = 0.2 and the history is
 //   clamped to the 3×3 min/max of the new visibility.
+// Also writes the variance of each layer for the à-trous value weight (shared/denoise.h).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform usampler2D surfaceTex;
 layout(set = 0, binding = 1) uniform usampler2D prevSurfaceTex;
@@ -14,6 +15,7 @@ layout(set = 0, binding = 2) uniform sampler2D motionTex;
 layout(set = 0, binding = 3) uniform sampler2DArray rawTex;
 layout(set = 0, binding = 4) uniform sampler2DArray historyTex;
 layout(set = 0, binding = 5, r32f) uniform writeonly image2DArray outHistory;
+layout(set = 0, binding = 6, r16f) uniform writeonly image2DArray outVariance;
 layout(push_constant, scalar) uniform Push { TemporalPush pc; };
 
 // 3×3 range of the new signal of one layer (taps clamped to the screen).
@@ -48,6 +50,18 @@ void main() {
     n /= r.sum;
   }
   const float alpha = max(1.0 / (1.0 + n), moving ? kShadowAlphaMinMoving : 0.0);
+  const float nOut = history ? min(n + 1.0, kShadowMaxLength) : 1.0;
+
+  // A short history: the variance comes from the bilateral 3×3 mean of the new samples.
+  const bool spatial = nOut < kShadowMinTemporalVarianceLength && !isSky(cur);
+  float spatialWeight[9];
+  for (int k = 0; k < 9; ++k) {
+    ivec2 o = ivec2(k % 3 - 1, k / 3 - 1), q = p + o;
+    spatialWeight[k] = 0.0;
+    if (!spatial || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(pc.size)))) continue;
+    Surface sq = decodeSurface(texelFetch(surfaceTex, q, 0));
+    if (!isSky(sq)) spatialWeight[k] = k == 4 ? 1.0 : geometryWeight(cur, sq, vec2(o));
+  }
 
   for (int layer = 0; layer < layers; ++layer) {
     float fresh = texelFetch(rawTex, ivec3(p, layer), 0).r;
@@ -64,6 +78,21 @@ void main() {
       value = mix(h, fresh, alpha);
     }
     imageStore(outHistory, ivec3(p, layer), vec4(value));
+
+    float m = value;
+    if (spatial) {
+      float sum = 0.0, weights = 0.0;
+      for (int k = 0; k < 9; ++k) {
+        if (spatialWeight[k] <= 0.0) continue;
+        sum += spatialWeight[k] * texelFetch(rawTex, ivec3(p + ivec2(k % 3 - 1, k / 3 - 1), layer), 0).r;
+        weights += spatialWeight[k];
+      }
+      m = sum / weights;
+    }
+    m = clamp(m, 0.0, 1.0);
+    float variance = isSky(cur) ? 0.0 : m * (1.0 - m);
+    if (!moving) variance /= nOut;
+    imageStore(outVariance, ivec3(p, layer), vec4(variance));
   }
-  imageStore(outHistory, ivec3(p, layers), vec4(history ? min(n + 1.0, kShadowMaxLength) : 1.0));
+  imageStore(outHistory, ivec3(p, layers), vec4(nOut));
 }

@@ -76,20 +76,23 @@ graph::ImageHandle zeroMotion(graph::RenderGraph& graph, VkExtent2D size);
 // C. Shadow denoiser. raw: R16F array, one layer per light; history: shadowHistoryDesc images.
 struct ShadowDenoised {
   graph::ImageHandle temporal;  // = history.next (running means; layer L holds n)
+  graph::ImageHandle variance;  // R16F array: per-light variance for the à-trous value weight
   graph::ImageHandle denoised;  // R16F array, one layer per light
 };
 ShadowDenoised denoiseShadows(graph::RenderGraph& graph, const DenoiseInputs& in, SurfacePair surface,
                               graph::ImageHandle motion, graph::ImageHandle raw, HistoryPair history,
                               TemporalState state);
-graph::ImageHandle shadowTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, SurfacePair surface,
-                                  graph::ImageHandle motion, graph::ImageHandle raw, HistoryPair history,
-                                  uint32_t lights, TemporalState state);
+// The temporal step alone: fills .temporal and .variance.
+ShadowDenoised shadowTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, SurfacePair surface,
+                              graph::ImageHandle motion, graph::ImageHandle raw, HistoryPair history, uint32_t lights,
+                              TemporalState state);
 // One à-trous iteration over the first `lights` layers of `input`, into `output` (returned), an
 // image from createShadowImage; ping-pong between two of them, never in place.
 graph::ImageHandle createShadowImage(graph::RenderGraph& graph, VkExtent2D size, uint32_t lights,
                                      const std::string& name);
 graph::ImageHandle shadowAtrous(graph::RenderGraph& graph, const DenoiseInputs& in, graph::ImageHandle surface,
-                                graph::ImageHandle input, graph::ImageHandle output, uint32_t lights, uint32_t step);
+                                graph::ImageHandle input, graph::ImageHandle variance, graph::ImageHandle output,
+                                uint32_t lights, uint32_t step);
 
 // D. SVGF for a radiance signal (RGBA16F). name: prefix of its passes and images ("reflection").
 // material: the G-buffer material image (.r perceptual roughness; ≤ 0.05 stays sharp).

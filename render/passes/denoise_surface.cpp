@@ -29,10 +29,10 @@ DenoisePipelines DenoisePipelines::create(rhi::Context& ctx) {
   DenoisePipelines p;
   const rhi::Binding surface[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorage}};
   p.surface = rhi::createComputePipeline(ctx, "surface.comp", surface, sizeof(gpu::SurfacePush));
-  const rhi::Binding shadowTemporal[] = {{0, kSampled}, {1, kSampled}, {2, kSampled},
-                                         {3, kSampled}, {4, kSampled}, {5, kStorage}};
+  const rhi::Binding shadowTemporal[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled},
+                                         {4, kSampled}, {5, kStorage}, {6, kStorage}};
   p.shadowTemporal = rhi::createComputePipeline(ctx, "shadow_temporal.comp", shadowTemporal, sizeof(gpu::TemporalPush));
-  const rhi::Binding shadowAtrous[] = {{0, kSampled}, {1, kSampled}, {2, kStorage}};
+  const rhi::Binding shadowAtrous[] = {{0, kSampled}, {1, kSampled}, {2, kStorage}, {3, kSampled}};
   p.shadowAtrous = rhi::createComputePipeline(ctx, "shadow_atrous.comp", shadowAtrous, sizeof(gpu::AtrousPush));
   const rhi::Binding svgfTemporal[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled},
                                        {4, kSampled}, {5, kSampled}, {6, kStorage}, {7, kStorage}};

@@ -27,6 +27,14 @@ RAYSTER_CONST float kReprojectMinWeight = 1.0e-3;
 // mean; n is kept in fp32, so the cap only bounds it (1/(1+n) stays far above fp32's resolution).
 RAYSTER_CONST float kShadowAlphaMinMoving = 0.2;
 RAYSTER_CONST float kShadowMaxLength = 65536.0;
+// Shadow variance, for the à-trous value weight (as SVGF's luminance weight): visibility samples
+// are 0 or 1, so μ2 = μ1 and the per-sample variance is m(1 − m) of the running mean m: no
+// moments to store. Below this history length it comes from the 3×3 bilateral mean of the new
+// samples instead (one sample is always 0 or 1). Static camera: divided by n, the variance of
+// the mean, so a converged hard shadow edge is not blurred. Differences below the epsilon are
+// half-float noise, never edges.
+RAYSTER_CONST float kShadowMinTemporalVarianceLength = 4.0;
+RAYSTER_CONST float kShadowValueEpsilon = 0.01;
 
 // SVGF temporal (TECHNIQUES.md §12): n = min(n+1, cap), α = max(αmin, 1/n). Moving: cap 32 and
 // αmin 0.2 (SVGF paper). Static: α = 1/n, the exact running mean, up to the large cap.

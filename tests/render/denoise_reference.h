@@ -134,10 +134,11 @@ struct Frame {
   }
 };
 
-// shadow_temporal.comp: raw L layers, history L+1 layers (last: n) → L+1 layers.
+// shadow_temporal.comp: raw L layers, history L+1 layers (last: n) → L+1 layers, and the
+// variance (L layers).
 inline std::vector<float> shadowTemporal(const Frame& f, const std::vector<float>& raw, const std::vector<float>& hist,
-                                         int layers) {
-  std::vector<float> out(size_t(f.w) * f.h * (layers + 1));
+                                         int layers, std::vector<float>* variance = nullptr) {
+  std::vector<float> out(size_t(f.w) * f.h * (layers + 1)), var(size_t(f.w) * f.h * layers);
   for (int y = 0; y < f.h; ++y)
     for (int x = 0; x < f.w; ++x) {
       ivec2 p(x, y);
@@ -149,6 +150,16 @@ inline std::vector<float> shadowTemporal(const Frame& f, const std::vector<float
         n /= r.sum;
       }
       float alpha = std::max(1.0f / (1.0f + n), f.moving() ? gpu::kShadowAlphaMinMoving : 0.0f);
+      const float nOut = r.valid() ? std::min(n + 1.0f, gpu::kShadowMaxLength) : 1.0f;
+      const Surf& cur = f.cur[f.at(p)];
+      const bool spatial = nOut < gpu::kShadowMinTemporalVarianceLength && !cur.sky();
+      float sw[9];
+      for (int k = 0; k < 9; ++k) {
+        ivec2 o(k % 3 - 1, k / 3 - 1), q = p + o;
+        sw[k] = 0;
+        if (!spatial || !f.inside(q) || f.cur[f.at(q)].sky()) continue;
+        sw[k] = k == 4 ? 1.0f : geometryWeight(cur, f.cur[f.at(q)], vec2(o));
+      }
       for (int l = 0; l < layers; ++l) {
         float fresh = raw[f.at(p, l)], value = fresh;
         if (r.valid()) {
@@ -169,36 +180,59 @@ inline std::vector<float> shadowTemporal(const Frame& f, const std::vector<float
           value = hv + (fresh - hv) * alpha;
         }
         out[f.at(p, l)] = value;
+        float m = value;
+        if (spatial) {
+          float sum = 0, weights = 0;
+          for (int k = 0; k < 9; ++k) {
+            if (sw[k] <= 0) continue;
+            sum += sw[k] * raw[f.at(p + ivec2(k % 3 - 1, k / 3 - 1), l)];
+            weights += sw[k];
+          }
+          m = sum / weights;
+        }
+        m = std::clamp(m, 0.0f, 1.0f);
+        float v = cur.sky() ? 0.0f : m * (1 - m);
+        if (!f.moving()) v /= nOut;
+        var[f.at(p, l)] = v;
       }
-      out[f.at(p, layers)] = r.valid() ? std::min(n + 1.0f, gpu::kShadowMaxLength) : 1.0f;
+      out[f.at(p, layers)] = nOut;
     }
+  if (variance) *variance = var;
   return out;
 }
 
 // shadow_atrous.comp, one iteration.
-inline std::vector<float> shadowAtrous(const Frame& f, const std::vector<float>& in, int layers, int step) {
+inline std::vector<float> shadowAtrous(const Frame& f, const std::vector<float>& in, const std::vector<float>& var,
+                                       int layers, int step) {
   std::vector<float> out(size_t(f.w) * f.h * layers);
   for (int y = 0; y < f.h; ++y)
     for (int x = 0; x < f.w; ++x) {
       ivec2 p(x, y);
       const Surf& sp = f.cur[f.at(p)];
-      std::vector<float> sum(layers, 0.0f);
-      float weights = 0;
-      if (sp.sky()) {
-        weights = 1;
-        for (int l = 0; l < layers; ++l) sum[l] = in[f.at(p, l)];
-      } else {
+      std::vector<float> sum(layers), weights(layers, 1.0f), centre(layers), scale(layers);
+      for (int l = 0; l < layers; ++l) {
+        centre[l] = sum[l] = in[f.at(p, l)];
+        scale[l] = 1.0f / (gpu::kSigmaLuminance * std::sqrt(var[f.at(p, l)]) + gpu::kShadowValueEpsilon);
+      }
+      if (!sp.sky()) {
+        std::fill(sum.begin(), sum.end(), 0.0f);
+        std::fill(weights.begin(), weights.end(), 0.0f);
         for (int j = -2; j <= 2; ++j)
           for (int i = -2; i <= 2; ++i) {
             ivec2 q = p + step * ivec2(i, j);
             if (!f.inside(q) || f.cur[f.at(q)].sky()) continue;
-            float w = b3(i) * b3(j) * ((i == 0 && j == 0) ? 1.0f : geometryWeight(sp, f.cur[f.at(q)], vec2(step * i, step * j)));
+            const bool isCentre = i == 0 && j == 0;
+            float w = b3(i) * b3(j) * (isCentre ? 1.0f : geometryWeight(sp, f.cur[f.at(q)], vec2(step * i, step * j)));
             if (w <= 0) continue;
-            weights += w;
-            for (int l = 0; l < layers; ++l) sum[l] += w * in[f.at(q, l)];
+            for (int l = 0; l < layers; ++l) {
+              float v = in[f.at(q, l)];
+              float wl = isCentre ? w : w * std::exp(-std::abs(centre[l] - v) * scale[l]);
+              sum[l] += wl * v;
+              weights[l] += wl;
+            }
           }
       }
-      for (int l = 0; l < layers; ++l) out[f.at(p, l)] = sum[l] / weights;
+      for (int l = 0; l < layers; ++l) out[f.at(p, l)] = sum[l] / weights[l];
     }
   return out;
 }

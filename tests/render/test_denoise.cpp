@@ -49,14 +49,18 @@ TEST_F(Denoise, ShadowTemporalMatchesCpu) {
     auto rawImg = fr.uploadHalves("raw", VK_FORMAT_R16_SFLOAT, kLights, raw);
     auto histImg = fr.upload("hist", kShadowHistoryFormat, kLights + 1, hist);
     auto next = fr.graph.createImage("next", shadowHistoryDesc(kSize, kLights));
-    auto& out = fr.download(shadowTemporal(fr.graph, inputs(), s, motion, rawImg, {histImg, next}, kLights, stateOf(flags)));
+    const ShadowDenoised t = shadowTemporal(fr.graph, inputs(), s, motion, rawImg, {histImg, next}, kLights, stateOf(flags));
+    auto& out = fr.download(t.temporal);
+    auto& varBytes = fr.download(t.variance);
     auto& curBytes = fr.download(s.current);
     auto& prevBytes = fr.download(s.previous);
     fr.run();
     const auto cur = surfacesOf(curBytes), prev = surfacesOf(prevBytes);
     const ref::Frame f{kW, kH, cur, prev, c.motion, flags};
-    const std::vector<float> expected = ref::shadowTemporal(f, raw, hist, kLights);
+    std::vector<float> variance;
+    const std::vector<float> expected = ref::shadowTemporal(f, raw, hist, kLights, &variance);
     expectNear(floatsOf(out), expected, 1e-5f, flags == kMoving ? "moving" : flags ? "reset" : "static");
+    expectNear(halvesOf(varBytes), variance, 1e-3f, "variance");
     // The disoccluded columns (x = 8, 9 were the left plane) restart: n = 1, value = raw.
     EXPECT_EQ(expected[kPixels * kLights + kW * 5 + 8], 1.0f);
     EXPECT_GT(expected[kPixels * kLights + kW * 5 + 4], flags == kReset ? 0.0f : 1.0f);
@@ -66,18 +70,22 @@ TEST_F(Denoise, ShadowTemporalMatchesCpu) {
 TEST_F(Denoise, ShadowAtrousMatchesCpu) {
   const ref::GBufferCpu g = makeGBuffer();
   const std::vector<float> input = visibilityNoise(3);
+  std::vector<float> variance = noise(kPixels * kLights, 11, 0.0f, 0.1f);
+  for (size_t i = 0; i < variance.size(); i += 3) variance[i] = 0.0f;  // converged: edges stay sharp
+  for (float& v : variance) v = viaHalf(v);
   for (uint32_t step : {1u, 4u}) {
     Frame fr(*this);
     auto surface = fr.surface("surface", g);
     auto in = fr.uploadHalves("in", VK_FORMAT_R16_SFLOAT, kLights, input);
+    auto var = fr.uploadHalves("var", VK_FORMAT_R16_SFLOAT, kLights, variance);
     auto out = createShadowImage(fr.graph, kSize, kLights, "out");
-    auto& bytes = fr.download(shadowAtrous(fr.graph, inputs(), surface, in, out, kLights, step));
+    auto& bytes = fr.download(shadowAtrous(fr.graph, inputs(), surface, in, var, out, kLights, step));
     auto& sBytes = fr.download(surface);
     fr.run();
     const auto cur = surfacesOf(sBytes);
     const std::vector<vec2> motion(kPixels, vec2(0));
     const ref::Frame f{kW, kH, cur, cur, motion, 0};
-    expectNear(halvesOf(bytes), ref::shadowAtrous(f, input, kLights, int(step)), 1e-3f, "shadow à-trous");
+    expectNear(halvesOf(bytes), ref::shadowAtrous(f, input, variance, kLights, int(step)), 1e-3f, "shadow à-trous");
   }
 }
 
