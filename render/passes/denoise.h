@@ -118,4 +118,4 @@ graph::ImageHandle svgfAtrous(graph::RenderGraph& graph, const DenoiseInputs& in
                               graph::ImageHandle surface, graph::ImageHandle material, graph::ImageHandle input,
                               graph::ImageHandle output, uint32_t step, graph::ImageHandle history = {});
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -9,7 +9,7 @@ namespace {
 uint32_t temporalFlags(TemporalState s) {
   return (s.moving ? gpu::kDenoiseMoving : 0u) | (s.reset ? gpu::kDenoiseReset : 0u);
 }
-} // namespace
+}  // namespace
 
 ShadowDenoised shadowTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, SurfacePair surface,
                               graph::ImageHandle motion, graph::ImageHandle raw, HistoryPair history, uint32_t lights,
@@ -93,4 +93,4 @@ ShadowDenoised denoiseShadows(graph::RenderGraph& graph, const DenoiseInputs& in
   return out;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

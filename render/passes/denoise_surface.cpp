@@ -1,5 +1,4 @@
-// The denoisers' shared pieces: their pipelines, history descriptions, the surface image (A) and,
-// until the G-buffer has motion vectors, a zero motion image (B).
+// The denoisers' shared pieces: their pipelines, history descriptions and the surface image.
 #include <algorithm>
 #include <span>
 
@@ -12,7 +11,7 @@ constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkImageUsageFlags kHistoryUsage =
     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-} // namespace
+}  // namespace
 
 rhi::ImageDesc surfaceDesc(VkExtent2D size) { return {kSurfaceFormat, size.width, size.height, 1, kHistoryUsage}; }
 rhi::ImageDesc shadowHistoryDesc(VkExtent2D size, uint32_t lights) {
@@ -41,7 +40,8 @@ DenoisePipelines DenoisePipelines::create(rhi::Context& ctx) {
   p.svgfVariance = rhi::createComputePipeline(ctx, "svgf_variance.comp", svgfVariance, sizeof(gpu::TemporalPush));
   const rhi::Binding svgfAtrous[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorage}, {4, kStorage}};
   p.svgfAtrous = rhi::createComputePipeline(ctx, "svgf_atrous.comp", std::span(svgfAtrous, 4), sizeof(gpu::AtrousPush));
-  p.svgfAtrousHistory = rhi::createComputePipeline(ctx, "svgf_atrous_history.comp", svgfAtrous, sizeof(gpu::AtrousPush));
+  p.svgfAtrousHistory =
+      rhi::createComputePipeline(ctx, "svgf_atrous_history.comp", svgfAtrous, sizeof(gpu::AtrousPush));
   return p;
 }
 
@@ -70,18 +70,4 @@ graph::ImageHandle writeSurface(graph::RenderGraph& graph, const DenoiseInputs& 
   return out;
 }
 
-graph::ImageHandle zeroMotion(graph::RenderGraph& graph, VkExtent2D size) {
-  graph::ImageHandle motion = graph.createImage(
-      "motion-zero", {kMotionFormat, size.width, size.height, 1,
-                      VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
-  graph.addPass(
-      "motion-zero", [&](graph::PassBuilder& b) { b.write(motion, graph::Use::TransferDst); },
-      [motion](graph::PassContext& pc) {
-        const VkClearColorValue zero{};
-        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        vkCmdClearColorImage(pc.cmd, pc.image(motion).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &all);
-      });
-  return motion;
-}
-
-} // namespace rayster::render
+}  // namespace rayster::render

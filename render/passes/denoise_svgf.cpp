@@ -12,7 +12,7 @@ void dispatch(VkCommandBuffer cmd, const rhi::Pipeline& pipe, VkExtent2D size, c
   vkCmdPushConstants(cmd, pipe.layout(), pipe.stages(), 0, bytes, push);
   vkCmdDispatch(cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
 }
-} // namespace
+}  // namespace
 
 void svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name, SurfacePair surface,
                   graph::ImageHandle motion, graph::ImageHandle raw, HistoryPair color, HistoryPair moments,
@@ -44,8 +44,9 @@ void svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, const std:
 }
 
 graph::ImageHandle createSvgfImage(graph::RenderGraph& graph, VkExtent2D size, const std::string& name) {
-  return graph.createImage(name, {kSvgfWorkingFormat, size.width, size.height, 1,
-                                  VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+  return graph.createImage(name,
+                           {kSvgfWorkingFormat, size.width, size.height, 1,
+                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
 }
 
 graph::ImageHandle svgfVariance(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
@@ -121,4 +122,4 @@ RadianceDenoised denoiseRadiance(graph::RenderGraph& graph, const DenoiseInputs&
   return out;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

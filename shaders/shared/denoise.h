@@ -51,14 +51,16 @@ RAYSTER_CONST float kSvgfMaxVariance = 65000.0;
 RAYSTER_CONST float kSigmaDepth = 1.0;
 RAYSTER_CONST float kSigmaNormal = 128.0;
 RAYSTER_CONST float kSigmaLuminance = 4.0;
-RAYSTER_CONST float kDepthEpsilon = 1.0e-4;      // keeps w_z finite on planes facing the camera
-RAYSTER_CONST float kLuminanceEpsilon = 1.0e-6;  // keeps w_l finite where the variance is 0
+RAYSTER_CONST float kDepthEpsilon = 1.0e-4;       // keeps w_z finite on planes facing the camera
+RAYSTER_CONST float kLuminanceEpsilon = 1.0e-6;   // keeps w_l finite where the variance is 0
 RAYSTER_CONST uint kShadowAtrousIterations = 3u;  // steps 1, 2, 4 (FidelityFX shadow denoiser)
 RAYSTER_CONST uint kSvgfAtrousIterations = 5u;    // steps 1 .. 16 (SVGF paper)
 // Mirrors and glass (perceptual roughness ≤ this) keep their sharp reflections: the spatial filter
 // skips them and never takes them as neighbours of rougher pixels; only temporal accumulation
 // applies (their traced radiance is nearly noise-free anyway: one deterministic bounce path).
-RAYSTER_CONST float kSharpRoughness = 0.05;
+// Half a step of the RGBA8 material target above 0.05: a roughness of exactly 0.05 (the chrome of
+// the Whitted scene) is stored as 13/255 = 0.051.
+RAYSTER_CONST float kSharpRoughness = 0.05 + 0.5 / 255.0;
 
 struct SurfacePush {
   uvec2 size;
@@ -86,7 +88,7 @@ struct AtrousPush {
 static_assert(sizeof(SurfacePush) == 16);
 static_assert(sizeof(TemporalPush) == 16);
 static_assert(sizeof(AtrousPush) == 32);
-} // namespace rayster::gpu
+}  // namespace rayster::gpu
 #endif
 
 #endif

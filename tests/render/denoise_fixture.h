@@ -100,7 +100,6 @@ class Denoise : public ::testing::Test {
     return *histories_.back();
   }
 
-
  public:
   // One graph: uploads from the CPU, the passes under test, downloads to the CPU.
   class Frame {
@@ -115,9 +114,9 @@ class Denoise : public ::testing::Test {
       std::memcpy(staging.mapped(), data, bytes);
       graph::BufferHandle src = graph.importBuffer(name + "-staging", &staging, &states_.emplace_back());
       graph::ImageHandle image = graph.createImage(
-          name, {format, kW, kH, layers,
-                 VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                 layers > 1});
+          name,
+          {format, kW, kH, layers,
+           VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, layers > 1});
       graph.addPass(
           "upload",
           [&](graph::PassBuilder& b) {
@@ -155,8 +154,8 @@ class Denoise : public ::testing::Test {
     std::vector<uint8_t>& download(graph::ImageHandle image) {
       const rhi::ImageDesc& d = graph.imageDesc(image);
       const size_t bytes = size_t(d.width) * d.height * d.layers * texelBytes(d.format);
-      rhi::Buffer& buffer =
-          buffers_.emplace_back(*t_.ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "download");
+      rhi::Buffer& buffer = buffers_.emplace_back(*t_.ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                  rhi::MemoryUsage::Readback, "download");
       readback(graph, image, graph.importBuffer("download", &buffer, &states_.emplace_back()));
       downloads_.push_back({&buffer, std::make_unique<std::vector<uint8_t>>(bytes)});
       return *downloads_.back().second;
@@ -171,11 +170,15 @@ class Denoise : public ::testing::Test {
    private:
     static uint32_t texelBytes(VkFormat f) {
       switch (f) {
-        case VK_FORMAT_R16_SFLOAT: return 2;
+        case VK_FORMAT_R16_SFLOAT:
+          return 2;
         case VK_FORMAT_R32_SFLOAT:
-        case VK_FORMAT_R8G8B8A8_UNORM: return 4;
-        case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
-        default: return 16;
+        case VK_FORMAT_R8G8B8A8_UNORM:
+          return 4;
+        case VK_FORMAT_R16G16B16A16_SFLOAT:
+          return 8;
+        default:
+          return 16;
       }
     }
     Denoise& t_;
@@ -197,7 +200,8 @@ class Denoise : public ::testing::Test {
 
 inline std::vector<test::ref::Surf> surfacesOf(const std::vector<uint8_t>& bytes) {
   std::vector<test::ref::Surf> s(kPixels);
-  for (size_t i = 0; i < kPixels; ++i) s[i] = test::ref::decodeSurface(reinterpret_cast<const uint32_t*>(bytes.data()) + i * 4);
+  for (size_t i = 0; i < kPixels; ++i)
+    s[i] = test::ref::decodeSurface(reinterpret_cast<const uint32_t*>(bytes.data()) + i * 4);
   return s;
 }
 inline std::vector<float> floatsOf(const std::vector<uint8_t>& bytes) {
@@ -221,7 +225,8 @@ inline std::vector<float> flatten(const std::vector<vec4>& v) {
   return f;
 }
 
-inline void expectNear(const std::vector<float>& gpu, const std::vector<float>& cpu, float tolerance, const char* what) {
+inline void expectNear(const std::vector<float>& gpu, const std::vector<float>& cpu, float tolerance,
+                       const char* what) {
   ASSERT_EQ(gpu.size(), cpu.size()) << what;
   int bad = 0;
   for (size_t i = 0; i < gpu.size(); ++i) {
@@ -257,4 +262,4 @@ inline std::vector<float> motionFloats(const std::vector<vec2>& m) {
   return f;
 }
 
-} // namespace rayster::render::denoise_test
+}  // namespace rayster::render::denoise_test

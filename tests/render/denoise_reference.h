@@ -60,7 +60,9 @@ struct GBufferCpu {
 inline float linearDepth(float d, float zNear, float zFar) { return zNear * zFar / (zNear + d * (zFar - zNear)); }
 inline std::vector<Surf> surfaces(const GBufferCpu& g, float zNear, float zFar) {
   std::vector<Surf> out(size_t(g.w) * g.h);
-  auto on = [&](int x, int y) { return x >= 0 && y >= 0 && x < g.w && y < g.h && g.id[y * g.w + x] != gpu::kBackgroundId; };
+  auto on = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < g.w && y < g.h && g.id[y * g.w + x] != gpu::kBackgroundId;
+  };
   auto z = [&](int x, int y) { return linearDepth(g.depth[y * g.w + x], zNear, zFar); };
   for (int y = 0; y < g.h; ++y)
     for (int x = 0; x < g.w; ++x) {
@@ -272,7 +274,8 @@ inline void svgfTemporal(const Frame& f, const std::vector<vec4>& raw, const std
 }
 
 // svgf_variance.comp → rgb colour, a variance.
-inline std::vector<vec4> svgfVariance(const Frame& f, const std::vector<vec4>& color, const std::vector<vec4>& moments) {
+inline std::vector<vec4> svgfVariance(const Frame& f, const std::vector<vec4>& color,
+                                      const std::vector<vec4>& moments) {
   std::vector<vec4> out(color.size());
   for (int y = 0; y < f.h; ++y)
     for (int x = 0; x < f.w; ++x) {
@@ -335,7 +338,8 @@ inline std::vector<vec4> svgfAtrous(const Frame& f, const std::vector<vec4>& in,
             if (i != 0 || j != 0) {
               const Surf& sq = f.cur[f.at(q)];
               if (sq.sky() || sharp(q)) continue;
-              w *= geometryWeight(sp, sq, vec2(step * i, step * j)) * std::exp(-std::abs(lp - luminance(vec3(c))) * lumScale);
+              w *= geometryWeight(sp, sq, vec2(step * i, step * j)) *
+                   std::exp(-std::abs(lp - luminance(vec3(c))) * lumScale);
             }
             color += w * vec3(c);
             var += w * w * c.a;
@@ -348,4 +352,4 @@ inline std::vector<vec4> svgfAtrous(const Frame& f, const std::vector<vec4>& in,
   return out;
 }
 
-} // namespace rayster::test::ref
+}  // namespace rayster::test::ref

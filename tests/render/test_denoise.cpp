@@ -49,7 +49,8 @@ TEST_F(Denoise, ShadowTemporalMatchesCpu) {
     auto rawImg = fr.uploadHalves("raw", VK_FORMAT_R16_SFLOAT, kLights, raw);
     auto histImg = fr.upload("hist", kShadowHistoryFormat, kLights + 1, hist);
     auto next = fr.graph.createImage("next", shadowHistoryDesc(kSize, kLights));
-    const ShadowDenoised t = shadowTemporal(fr.graph, inputs(), s, motion, rawImg, {histImg, next}, kLights, stateOf(flags));
+    const ShadowDenoised t =
+        shadowTemporal(fr.graph, inputs(), s, motion, rawImg, {histImg, next}, kLights, stateOf(flags));
     auto& out = fr.download(t.temporal);
     auto& varBytes = fr.download(t.variance);
     auto& curBytes = fr.download(s.current);
@@ -196,16 +197,17 @@ class DenoiseRun {
                 const std::vector<vec4>& radiance, TemporalState state, const DenoiseInputs& in) {
     SurfacePair s{fr.surface("surface", g, surface_.next(fr.graph, "surface", f_)),
                   surface_.previous(fr.graph, "surface", f_)};
-    auto motion = zeroMotion(fr.graph, kSize);
+    auto motion = fr.uploadHalves("motion", kMotionFormat, 1, std::vector<float>(kPixels * 2, 0.0f));  // static
     auto vis = fr.uploadHalves("vis", VK_FORMAT_R16_SFLOAT, kLights, visibility);
     auto rad = fr.uploadHalves("rad", VK_FORMAT_R16G16B16A16_SFLOAT, 1, flatten(radiance));
     auto material = fr.upload("material", VK_FORMAT_R8G8B8A8_UNORM, 1, g.material);
-    ShadowDenoised sh = denoiseShadows(fr.graph, in, s, motion, vis,
-                                       {shadow_.previous(fr.graph, "shadow", f_), shadow_.next(fr.graph, "shadow", f_)}, state);
-    RadianceDenoised rd = denoiseRadiance(
-        fr.graph, in, "reflection", s, motion, material, rad,
-        {color_.previous(fr.graph, "color", f_), color_.next(fr.graph, "color", f_)},
-        {moments_.previous(fr.graph, "moments", f_), moments_.next(fr.graph, "moments", f_)}, state);
+    ShadowDenoised sh =
+        denoiseShadows(fr.graph, in, s, motion, vis,
+                       {shadow_.previous(fr.graph, "shadow", f_), shadow_.next(fr.graph, "shadow", f_)}, state);
+    RadianceDenoised rd =
+        denoiseRadiance(fr.graph, in, "reflection", s, motion, material, rad,
+                        {color_.previous(fr.graph, "color", f_), color_.next(fr.graph, "color", f_)},
+                        {moments_.previous(fr.graph, "moments", f_), moments_.next(fr.graph, "moments", f_)}, state);
     auto& a = fr.download(sh.temporal);
     auto& b = fr.download(sh.denoised);
     auto& c = fr.download(rd.temporal);
@@ -222,12 +224,12 @@ class DenoiseRun {
 
 class DenoiseFrames : public Denoise {
  protected:
-  Outputs frame(const ref::GBufferCpu& g, const std::vector<float>& vis, const std::vector<vec4>& rad, TemporalState st) {
+  Outputs frame(const ref::GBufferCpu& g, const std::vector<float>& vis, const std::vector<vec4>& rad,
+                TemporalState st) {
     if (!run_)
-      run_ = std::make_unique<DenoiseRun>(history(surfaceDesc(kSize), "surface"),
-                                          history(shadowHistoryDesc(kSize, kLights), "shadow"),
-                                          history(svgfColorHistoryDesc(kSize), "color"),
-                                          history(svgfMomentsHistoryDesc(kSize), "moments"));
+      run_ = std::make_unique<DenoiseRun>(
+          history(surfaceDesc(kSize), "surface"), history(shadowHistoryDesc(kSize, kLights), "shadow"),
+          history(svgfColorHistoryDesc(kSize), "color"), history(svgfMomentsHistoryDesc(kSize), "moments"));
     Frame fr(*this);
     return run_->frame(fr, g, vis, rad, st, inputs());
   }
@@ -274,10 +276,13 @@ TEST_F(DenoiseFrames, NoBleedingAcrossADepthEdge) {
     const Outputs o = frame(g, vis, rad, {true, f == 0});
     expectAllFinite(o);
     for (int l = 0; l < kLights; ++l)
-      for (size_t i = 0; i < kPixels; ++i) ASSERT_NEAR(o.shadowDenoised[l * kPixels + i], vis[l * kPixels + i], 1e-3f) << i;
+      for (size_t i = 0; i < kPixels; ++i)
+        ASSERT_NEAR(o.shadowDenoised[l * kPixels + i], vis[l * kPixels + i], 1e-3f) << i;
     for (size_t i = kW; i < kPixels; ++i) {
-      if (i % kW >= 8) ASSERT_EQ(o.radianceDenoised[i].r + o.radianceDenoised[i].g, 0.0f) << "bled into " << i;
-      else ASSERT_GT(o.radianceDenoised[i].g, 0.999f) << "darkened at " << i;
+      if (i % kW >= 8)
+        ASSERT_EQ(o.radianceDenoised[i].r + o.radianceDenoised[i].g, 0.0f) << "bled into " << i;
+      else
+        ASSERT_GT(o.radianceDenoised[i].g, 0.999f) << "darkened at " << i;
     }
   }
 }
@@ -301,7 +306,8 @@ TEST_F(DenoiseFrames, StaticCameraTemporalOutputIsTheMean) {
     }
     for (size_t i = kW; i < kPixels; ++i) {
       ASSERT_EQ(o.shadowTemporal[kPixels * kLights + i], float(f + 1)) << "history length";
-      for (int c = 0; c < 3; ++c) ASSERT_NEAR(o.radianceTemporal[i][c], radSum[i][c] / float(f + 1), 1e-5f) << f << " " << i;
+      for (int c = 0; c < 3; ++c)
+        ASSERT_NEAR(o.radianceTemporal[i][c], radSum[i][c] / float(f + 1), 1e-5f) << f << " " << i;
     }
   }
 }
@@ -333,5 +339,5 @@ TEST_F(DenoiseFrames, NoNanOrInfOnExtremeInputs) {
   for (int f = 0; f < 5; ++f) expectAllFinite(frame(g, vis, rad, {f % 2 == 1, f == 0}));
 }
 
-} // namespace
-} // namespace rayster::render::denoise_test
+}  // namespace
+}  // namespace rayster::render::denoise_test
