@@ -53,7 +53,7 @@ graph::ImageHandle shadowAtrous(graph::RenderGraph& graph, const DenoiseInputs& 
                                 graph::ImageHandle input, graph::ImageHandle variance, graph::ImageHandle out,
                                 uint32_t lights, uint32_t step) {
   graph.addPass(
-      "shadow-atrous",
+      "shadow-atrous-" + std::to_string(step),
       [&](graph::PassBuilder& b) {
         b.read(surface, graph::Use::SampledCompute);
         b.read(input, graph::Use::SampledCompute);

@@ -78,7 +78,7 @@ graph::ImageHandle svgfAtrous(graph::RenderGraph& graph, const DenoiseInputs& in
                               graph::ImageHandle surface, graph::ImageHandle material, graph::ImageHandle input,
                               graph::ImageHandle output, uint32_t step, graph::ImageHandle history) {
   graph.addPass(
-      name + "-atrous",
+      name + "-atrous-" + std::to_string(step),
       [&](graph::PassBuilder& b) {
         for (auto h : {surface, material, input}) b.read(h, graph::Use::SampledCompute);
         b.write(output, graph::Use::StorageWriteCompute);
