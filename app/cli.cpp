@@ -98,7 +98,8 @@ int run(int argc, char** argv) {
   render->add_option("--aov", ro.aovs,
                      "Also write intermediates as <stem>.<name>.png and .exr: all, or a comma-separated list of "
                      "depth, normal, albedo, material, emissive, shadow-raw, shadow-denoised, reflection-raw, "
-                     "reflection-denoised, ao-raw, ao-denoised, indirect-raw, indirect-denoised");
+                     "reflection-denoised, ao-raw, ao-denoised, indirect-raw, indirect-denoised, and per "
+                     "shadowed light N (0-7) shadowN-raw, shadowN-denoised");
   render->add_option("--json", ro.jsonOutput, "Write per-pass GPU times and settings as JSON to this file");
 
   CLI::App* info = cli.add_subcommand("info", "List Vulkan devices and their ray-tracing capabilities");

@@ -74,12 +74,8 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   indirect.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kStorage}};
   indirect.globalSet = textures;
   p.indirect = rhi::RayTracingPipeline(ctx, indirect);
+  p.denoise = DenoisePipelines::create(ctx);
 
-  const rhi::Binding radiance[] = {{1, kStorage}, {2, kStorage}, {3, kStorage}};
-  p.radianceAccumulate = rhi::createComputePipeline(ctx, "radiance_accumulate.comp", radiance, 16);
-
-  const rhi::Binding accumulate[] = {{1, kStorage}, {2, kStorage}, {3, kStorage}};
-  p.shadowAccumulate = rhi::createComputePipeline(ctx, "shadow_accumulate.comp", accumulate, 16);
   const rhi::Binding lighting[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled},
                                    {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage},
                                    {8, kSampled}, {9, kSampled}, {10, kSampled}, {11, kSampled}};

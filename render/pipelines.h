@@ -1,6 +1,7 @@
 #pragma once
 // Every pipeline of the hybrid frame, created once per renderer.
 #include "rhi/pipelines.h"
+#include "render/passes/denoise.h"
 #include "rhi/rt_pipeline.h"
 
 namespace rayster::render {
@@ -17,22 +18,19 @@ inline constexpr VkFormat kMotionFormat = VK_FORMAT_R16G16_SFLOAT;  // uvCurrent
 inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
 inline constexpr VkFormat kVisibilityFormat = VK_FORMAT_R16_SFLOAT;
-inline constexpr VkFormat kVisibilityHistoryFormat = VK_FORMAT_R32_SFLOAT;  // accumulated: never 8 or 16 bits
 inline constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kTaaHistoryFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // a resolved image: fp16 is enough
-inline constexpr VkFormat kRadianceHistoryFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 struct Pipelines {
   rhi::Pipeline gbufferRaster;
   rhi::Pipeline gbufferSpheres;  // raster impostors for analytic spheres
   rhi::RayTracingPipeline gbufferTraced;
   rhi::RayTracingPipeline shadows;
-  rhi::Pipeline shadowAccumulate;
   rhi::RayTracingPipeline specular;  // reflections and refractions (bounce loop)
   rhi::RayTracingPipeline direct;    // many-light stochastic direct light
-  rhi::Pipeline radianceAccumulate;
   rhi::RayTracingPipeline ao;        // ambient occlusion
   rhi::RayTracingPipeline indirect;  // one-bounce indirect diffuse
+  DenoisePipelines denoise;          // shadows/AO and SVGF (render/passes/denoise.h)
   rhi::Pipeline lighting;
   rhi::Pipeline taa;
   rhi::Pipeline tonemap;

@@ -5,7 +5,6 @@
 #include <cstring>
 #include <deque>
 #include <map>
-#include <tuple>
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -16,6 +15,7 @@
 #include "render/gpu_scene.h"
 #include "render/history.h"
 #include "render/jitter.h"
+#include "render/passes/denoise.h"
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
 #include "rhi/commands.h"
@@ -27,10 +27,16 @@
 namespace rayster::render {
 
 const std::vector<std::string>& aovNames() {
-  static const std::vector<std::string> names = {"depth",       "normal",         "albedo",          "material",
-                                                 "emissive",    "motion",  "shadow-raw",     "shadow-denoised", "reflection-raw",
-                                                 "reflection-denoised", "ao-raw",    "ao-denoised",     "indirect-raw",
-                                                 "indirect-denoised"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n = {"depth",           "normal",         "albedo",       "material",
+                                  "emissive",        "motion",         "shadow-raw",   "shadow-denoised",
+                                  "reflection-raw",  "reflection-denoised", "ao-raw",  "ao-denoised",
+                                  "indirect-raw",    "indirect-denoised"};
+    // Per shadowed light: layer i of the visibility arrays ("shadow-raw" is layer 0).
+    for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-raw");
+    for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-denoised");
+    return n;
+  }();
   return names;
 }
 
@@ -101,7 +107,25 @@ struct Renderer::Impl {
   graph::TransientPool transients;
   rhi::CommandList commands;
   rhi::TimestampPool timers;
-  History shadowHistory, specularHistory, directHistory, taaHistory, aoHistory, indirectHistory;
+  // Temporal state of the denoisers: the surface (disocclusion tests), shadow and AO means, SVGF
+  // colour and moments of the reflections, the indirect light and the many-light direct light;
+  // and TAA's resolved colour.
+  History surfaceHistory, shadowHistory, aoHistory, taaHistory;
+  struct SvgfHistory {
+    History color, moments;
+    // Full size only while the signal exists (a 1×1 stand-in otherwise, never read).
+    void ensure(rhi::Context& ctx, VkExtent2D size, bool used, const std::string& name) {
+      const VkExtent2D s = used ? size : VkExtent2D{1, 1};
+      color.ensure(ctx, svgfColorHistoryDesc(s), name + "-history");
+      moments.ensure(ctx, svgfMomentsHistoryDesc(s), name + "-moments");
+    }
+    HistoryPair colorPair(graph::RenderGraph& g, const std::string& name, uint32_t f) {
+      return {color.previous(g, name + "-history", f), color.next(g, name + "-history", f)};
+    }
+    HistoryPair momentsPair(graph::RenderGraph& g, const std::string& name, uint32_t f) {
+      return {moments.previous(g, name + "-moments", f), moments.next(g, name + "-moments", f)};
+    }
+  } specularHistory, indirectHistory, directHistory;
   uint32_t frameIndex = 0;
   uint32_t taaFrames = 0;  // frames in the TAA history since its last reset
   scene::Scene pose;  // animated scenes: nodes, instances and animations only, posed each frame
@@ -196,33 +220,17 @@ struct Renderer::Impl {
   }
 
   void ensureHistory(const RenderSettings& s) {
-    shadowHistory.ensure(ctx,
-                         {kVisibilityHistoryFormat, s.width, s.height, std::max(shadowLights(), 1u),
-                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, true},
-                         "shadow-history");
-    specularHistory.ensure(
-        ctx,
-        {kRadianceHistoryFormat, s.width, s.height, 1,
-         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
-        "specular-history");
-    directHistory.ensure(
-        ctx,
-        {kRadianceHistoryFormat, manyLights ? s.width : 1, manyLights ? s.height : 1, 1,
-         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
-        "direct-history");
+    const VkExtent2D size{s.width, s.height};
+    surfaceHistory.ensure(ctx, surfaceDesc(size), "surface-history");
+    shadowHistory.ensure(ctx, shadowHistoryDesc(size, shadowLights()), "shadow-history");
+    aoHistory.ensure(ctx, shadowHistoryDesc(s.ao ? size : VkExtent2D{1, 1}, 1), "ao-history");
+    specularHistory.ensure(ctx, size, true, "specular");
+    indirectHistory.ensure(ctx, size, indirectOn(s), "indirect");
+    directHistory.ensure(ctx, size, manyLights, "direct");
     taaHistory.ensure(ctx,
                       {kTaaHistoryFormat, s.width, s.height, 1,
                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
                       "taa-history");
-    aoHistory.ensure(ctx,
-                     {kVisibilityHistoryFormat, s.width, s.height, 1,
-                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, true},
-                     "ao-history");
-    indirectHistory.ensure(
-        ctx,
-        {kRadianceHistoryFormat, s.width, s.height, 1,
-         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
-        "indirect-history");
   }
 
   // Times one G-buffer producer alone: a warm-up frame, then a measured one.
@@ -299,7 +307,6 @@ struct Renderer::Impl {
       pose.instances = scene.instances;
       pose.animations = scene.animations;
     }
-    uint32_t accumulated = 0;  // frames in the temporal histories since anything last moved
     bool movedBefore = false;
     taaHistory.valid = false;  // every headless run starts its own history
     glm::mat4 prevClipFromWorld(1.0f);
@@ -308,7 +315,13 @@ struct Renderer::Impl {
     rhi::Buffer ldrReadback(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
     rhi::Buffer hdrReadback(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "hdr-readback");
     graph::ResourceState ldrState, hdrState;
-    std::vector<std::tuple<std::string, VkFormat, rhi::Buffer>> aovReadback;
+    struct AovReadback {
+      std::string name;
+      VkFormat format;
+      uint32_t layer;
+      rhi::Buffer buffer;
+    };
+    std::vector<AovReadback> aovReadback;
     std::deque<graph::ResourceState> aovStates;  // stable addresses for the graph
     for (const std::string& name : s.aovs)
       if (std::find(aovNames().begin(), aovNames().end(), name) == aovNames().end())
@@ -319,9 +332,10 @@ struct Renderer::Impl {
     for (uint32_t f = 0; f < s.frames; ++f) {
       frameIndex = f;
       const scene::Camera camera = s.cameraPath ? cameraOnPath(*cam, s, f) : *cam;
-      const bool cut = !taaHistory.valid || isCameraCut(prevCamera, camera) ||
+      // A cut (the first frame of a run, a jump of the camera, or a listed frame) restarts every history.
+      const bool cut = f == 0 || isCameraCut(prevCamera, camera) ||
                        std::find(s.cuts.begin(), s.cuts.end(), f) != s.cuts.end();
-      if (cut) taaFrames = 0;
+      if (cut || !taaHistory.valid) taaFrames = 0;
       const glm::vec2 jitter = s.taa ? jitterNdc(f, s.width, s.height) : glm::vec2(0.0f);
       prevClipFromWorld = writeConstants(s, camera, jitter, cut ? nullptr : &prevClipFromWorld);
       prevCamera = camera;
@@ -337,36 +351,49 @@ struct Renderer::Impl {
         graph.addPass("tlas-update", [](graph::PassBuilder& b) { b.sideEffect(); },
                       [this](graph::PassContext& pc) { gpu.tlas.update(pc.cmd, gpu.tlasInstances); });
       }
-      if (moving) accumulated = 0;
 
       GBuffer gb = out.primaryUsed == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
+      // Every run starts without history, and so does a camera cut; while the camera or an object
+      // moves, the denoisers keep short histories.
+      const TemporalState temporal{moving, f == 0 || cut || !surfaceHistory.valid};
+      const DenoiseInputs dn{pipelines.denoise, nearest.handle(), in.size};
+      const SurfacePair surface{
+          writeSurface(graph, dn, gb.depth, gb.normals, gb.id, surfaceHistory.next(graph, "surface", f),
+                       camera.zNear, camera.zFar),
+          surfaceHistory.previous(graph, "surface", f)};
+      const graph::ImageHandle motion = gb.motion;
+
       graph::ImageHandle raw = traceShadows(graph, in, gb, shadowLights());
-      graph::ImageHandle prev = shadowHistory.previous(graph, "shadow-history", f);
-      graph::ImageHandle next = shadowHistory.next(graph, "shadow-history", f);
-      // A moving camera invalidates the history: until reprojection exists, each frame stands alone.
-      graph::ImageHandle visibility = accumulateShadows(graph, in, raw, prev, next, accumulated);
+      const ShadowDenoised shadows =
+          denoiseShadows(graph, dn, surface, motion, raw,
+                         {shadowHistory.previous(graph, "shadow-history", f), shadowHistory.next(graph, "shadow-history", f)},
+                         temporal);
+      graph::ImageHandle visibility = shadows.denoised;
       graph::ImageHandle specularRaw = traceSpecular(graph, in, gb);
-      graph::ImageHandle specularPrev = specularHistory.previous(graph, "specular-history", f);
-      graph::ImageHandle specularNext = specularHistory.next(graph, "specular-history", f);
       graph::ImageHandle specular =
-          accumulateRadiance(graph, in, specularRaw, specularPrev, specularNext, accumulated);
+          denoiseRadiance(graph, dn, "reflection", surface, motion, gb.material, specularRaw,
+                          specularHistory.colorPair(graph, "specular", f),
+                          specularHistory.momentsPair(graph, "specular", f), temporal)
+              .denoised;
       graph::ImageHandle direct;
-      if (manyLights) {
-        graph::ImageHandle directRaw = traceDirect(graph, in, gb);
-        direct = accumulateRadiance(graph, in, directRaw, directHistory.previous(graph, "direct-history", f),
-                                    directHistory.next(graph, "direct-history", f), accumulated);
-      }
-      // AO and indirect light: accumulated like the shadows until their denoisers exist; when an
-      // effect is off its raw image is constant and goes to lighting as is.
+      if (manyLights)
+        direct = denoiseRadiance(graph, dn, "direct", surface, motion, gb.material, traceDirect(graph, in, gb),
+                                 directHistory.colorPair(graph, "direct", f),
+                                 directHistory.momentsPair(graph, "direct", f), temporal)
+                     .denoised;
+      // When an effect is off its raw image is constant and goes to lighting as is.
       graph::ImageHandle aoRaw = traceAo(graph, in, gb), ao = aoRaw;
       if (s.ao)
-        ao = accumulateShadows(graph, in, aoRaw, aoHistory.previous(graph, "ao-history", f),
-                               aoHistory.next(graph, "ao-history", f), accumulated, "ao-accumulate");
+        ao = denoiseShadows(graph, dn, surface, motion, aoRaw,
+                            {aoHistory.previous(graph, "ao-history", f), aoHistory.next(graph, "ao-history", f)},
+                            temporal, "ao")
+                 .denoised;
       graph::ImageHandle indirectRaw = traceIndirect(graph, in, gb), indirect = indirectRaw;
       if (indirectOn(s))
-        indirect = accumulateRadiance(graph, in, indirectRaw, indirectHistory.previous(graph, "indirect-history", f),
-                                      indirectHistory.next(graph, "indirect-history", f), accumulated,
-                                      "indirect-accumulate");
+        indirect = denoiseRadiance(graph, dn, "indirect", surface, motion, gb.material, indirectRaw,
+                                   indirectHistory.colorPair(graph, "indirect", f),
+                                   indirectHistory.momentsPair(graph, "indirect", f), temporal)
+                       .denoised;
       graph::ImageHandle hdr = shadeLighting(graph, in, gb, {visibility, specular, ao, indirect, direct});
       if (s.taa)
         hdr = resolveTaa(graph, in,
@@ -377,38 +404,46 @@ struct Renderer::Impl {
         readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));
         readback(graph, hdr, graph.importBuffer("hdr-readback", &hdrReadback, &hdrState));
         // "denoised" stages are the temporal accumulation until the denoisers exist.
-        const std::map<std::string, graph::ImageHandle> stages = {
-            {"depth", gb.depth},      {"normal", gb.normals},         {"albedo", gb.albedo},
-            {"material", gb.material}, {"emissive", gb.emissive},     {"motion", gb.motion},     {"shadow-raw", raw},
-            {"shadow-denoised", visibility}, {"reflection-raw", specularRaw}, {"reflection-denoised", specular},
-            {"ao-raw", aoRaw},           {"ao-denoised", ao},             {"indirect-raw", indirectRaw},
-            {"indirect-denoised", indirect}};
+        // Stage → (image, layer); the visibility arrays hold one layer per shadowed light.
+        std::map<std::string, std::pair<graph::ImageHandle, uint32_t>> stages = {
+            {"depth", {gb.depth, 0}},       {"normal", {gb.normals, 0}},          {"albedo", {gb.albedo, 0}},
+            {"material", {gb.material, 0}}, {"emissive", {gb.emissive, 0}},       {"motion", {gb.motion, 0}},
+            {"shadow-raw", {raw, 0}},       {"shadow-denoised", {visibility, 0}}, {"reflection-raw", {specularRaw, 0}},
+            {"reflection-denoised", {specular, 0}}, {"ao-raw", {aoRaw, 0}},       {"ao-denoised", {ao, 0}},
+            {"indirect-raw", {indirectRaw, 0}},     {"indirect-denoised", {indirect, 0}}};
+        for (uint32_t i = 0; i < shadowLights(); ++i) {
+          stages["shadow" + std::to_string(i) + "-raw"] = {raw, i};
+          stages["shadow" + std::to_string(i) + "-denoised"] = {visibility, i};
+        }
         for (const std::string& name : s.aovs) {
-          graph::ImageHandle h = stages.at(name);
-          const rhi::ImageDesc& d = graph.imageDesc(h);
-          // Layer 0 only: the first shadowed light.
-          aovReadback.emplace_back(name, d.format,
-                                   rhi::Buffer(ctx, size_t(d.width) * d.height * texelBytes(d.format) * d.layers,
-                                               VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
-                                               "aov-readback"));
+          auto it = stages.find(name);
+          if (it == stages.end()) {  // a light the scene does not have
+            log::info("AOV '{}' skipped: the scene has {} shadowed light(s)", name, shadowLights());
+            continue;
+          }
+          const rhi::ImageDesc& d = graph.imageDesc(it->second.first);
+          aovReadback.push_back({name, d.format, it->second.second,
+                                 rhi::Buffer(ctx, size_t(d.width) * d.height * texelBytes(d.format) * d.layers,
+                                             VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
+                                             "aov-readback")});
           aovStates.emplace_back();
         }
         for (size_t i = 0; i < aovReadback.size(); ++i)
-          readback(graph, stages.at(std::get<0>(aovReadback[i])),
-                   graph.importBuffer("aov-readback", &std::get<2>(aovReadback[i]), &aovStates[i]));
+          readback(graph, stages.at(aovReadback[i].name).first,
+                   graph.importBuffer("aov-readback", &aovReadback[i].buffer, &aovStates[i]));
       }
 
       VkCommandBuffer cmd = commands.begin();
       timers.reset(cmd);
       graph.execute(cmd, &timers);
       ctx.wait(commands.submit());
+      for (History* h : {&surfaceHistory, &shadowHistory, &aoHistory}) h->valid = true;
       for (auto& t : timers.read()) {
         if (t.name == "readback" || t.name == "host-visible") continue;
         if (!passTimes.count(t.name)) passOrder.push_back(t.name);
         passTimes[t.name].push_back(t.ms);
       }
       ctx.collectGarbage();
-      ++accumulated;
       if (s.taa) {
         taaHistory.valid = true;
         ++taaFrames;
@@ -426,9 +461,9 @@ struct Renderer::Impl {
     out.hdr = ImageF::make(int(s.width), int(s.height));
     const uint16_t* halves = static_cast<const uint16_t*>(hdrReadback.mapped());
     for (size_t i = 0; i < pixels * 4; ++i) out.hdr.rgba[i] = halfToFloat(halves[i]);
-    for (auto& [name, format, buffer] : aovReadback) {
+    for (auto& [name, format, layer, buffer] : aovReadback) {
       ImageF img = ImageF::make(int(s.width), int(s.height));
-      const uint8_t* data = static_cast<const uint8_t*>(buffer.mapped());
+      const uint8_t* data = static_cast<const uint8_t*>(buffer.mapped()) + size_t(layer) * pixels * texelBytes(format);
       for (size_t i = 0; i < pixels; ++i)
         for (int c = 0; c < 4; ++c) img.rgba[i * 4 + c] = texel(data, format, i, c);
       out.aovs.emplace_back(name, std::move(img));

@@ -1,6 +1,7 @@
 #pragma once
 // Renders a scene headless with the hybrid frame: G-buffer (raster or traced primary rays),
-// ray-traced shadows accumulated over frames, deferred lighting, tonemapping, readback.
+// ray-traced shadows and reflections denoised over frames (render/passes/denoise.h), deferred
+// lighting, tonemapping, readback.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -24,7 +25,7 @@ const char* primaryName(Primary p);
 
 struct RenderSettings {
   uint32_t width = 1280, height = 720;
-  uint32_t frames = 16;  // shadow samples accumulated for the static camera
+  uint32_t frames = 16;  // frames rendered; a static camera's denoisers accumulate them all
   uint32_t seed = 0;
   Primary primary = Primary::Auto;
   float exposureEv = 0.0f;
@@ -40,7 +41,7 @@ struct RenderSettings {
   // with more, every pixel picks one light by importance (many-light mode).
   uint32_t shadowLights = 8;
   // Follow the scene's camera path at pathFps frames per second (the camera above supplies the
-  // field of view and clip planes). A moving camera accumulates nothing across frames.
+  // field of view and clip planes). A moving camera denoises with capped histories (αmin 0.2).
   bool cameraPath = false;
   // Intermediate images to return (names in aovNames()), read back after the last frame.
   std::vector<std::string> aovs;

@@ -132,7 +132,9 @@ Sampler::Sampler(Context& ctx, VkFilter mag, VkFilter min, VkSamplerAddressMode 
   VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   ci.magFilter = mag;
   ci.minFilter = min;
-  ci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  // Without mips only level 0 exists: NEAREST then changes nothing, and lets the sampler read
+  // integer formats (ids, the denoisers' surface), which support no linear filtering of any kind.
+  ci.mipmapMode = mips ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
   ci.addressModeU = u;
   ci.addressModeV = v;
   ci.addressModeW = u;

@@ -50,18 +50,11 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in);
 
 // One visibility layer per shadowed light (R16F array), 1 sample per pixel.
 graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t lights);
-// Running mean over frames: reads `history` (holding `samples` samples), writes `next`. Any R16F
-// array of visibility-like values (shadows, AO); `name` labels the pass.
-graph::ImageHandle accumulateShadows(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle raw,
-                                     graph::ImageHandle history, graph::ImageHandle next, uint32_t samples,
-                                     const char* name = "shadow-accumulate");
+// Denoised by denoiseShadows() (render/passes/denoise.h).
 
 // Reflections and refractions of mirror, metal and glass pixels (RGBA16F radiance, 0 elsewhere).
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
-// Running mean of a radiance image over frames: reads `history` (holding `samples`), writes `next`.
-graph::ImageHandle accumulateRadiance(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle raw,
-                                      graph::ImageHandle history, graph::ImageHandle next, uint32_t samples,
-                                      const char* name = "specular-accumulate");
+// Denoised by denoiseRadiance() (render/passes/denoise.h).
 
 // Ambient occlusion (one-layer R16F array, 1 unoccluded), 1 sample per pixel; 1 everywhere when
 // FrameConstants::effectFlags lacks kEffectAo.

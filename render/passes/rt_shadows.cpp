@@ -1,4 +1,4 @@
-// Pass 2: ray-traced soft shadows from the G-buffer, and their accumulation over a static camera.
+// Pass 2: ray-traced soft shadows from the G-buffer (denoised in denoise_shadows.cpp).
 #include "render/gpu_scene.h"
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
@@ -31,32 +31,6 @@ graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in
         if (lights > 0) pipe.trace(pc.cmd, in.size.width, in.size.height, lights);
       });
   return vis;
-}
-
-graph::ImageHandle accumulateShadows(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle raw,
-                                     graph::ImageHandle history, graph::ImageHandle next, uint32_t samples,
-                                     const char* name) {
-  graph.addPass(
-      name,
-      [&](graph::PassBuilder& b) {
-        b.read(raw, graph::Use::StorageReadCompute);
-        b.read(history, graph::Use::StorageReadCompute);
-        b.write(next, graph::Use::StorageWriteCompute);
-      },
-      [raw, history, next, samples, &in](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = in.pipelines.shadowAccumulate;
-        const rhi::Image& out = pc.image(next);
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter()
-            .storageImage(1, pc.image(raw).view())
-            .storageImage(2, pc.image(history).view())
-            .storageImage(3, out.view())
-            .push(pc.cmd, pipe);
-        uint32_t push[4] = {in.size.width, in.size.height, out.desc().layers, samples};
-        vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), push);
-        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, out.desc().layers);
-      });
-  return next;
 }
 
 } // namespace rayster::render

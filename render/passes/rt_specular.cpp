@@ -1,5 +1,5 @@
-// Pass 4: ray-traced reflections and refractions (the raygen bounce loop), and their accumulation
-// over the frames of a static camera.
+// Pass 4: ray-traced reflections and refractions (the raygen bounce loop); denoised by SVGF
+// (denoise_svgf.cpp).
 #include "render/gpu_scene.h"
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
@@ -34,31 +34,6 @@ graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& i
         pipe.trace(pc.cmd, in.size.width, in.size.height);
       });
   return out;
-}
-
-graph::ImageHandle accumulateRadiance(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle raw,
-                                      graph::ImageHandle history, graph::ImageHandle next, uint32_t samples,
-                                      const char* name) {
-  graph.addPass(
-      name,
-      [&](graph::PassBuilder& b) {
-        b.read(raw, graph::Use::StorageReadCompute);
-        b.read(history, graph::Use::StorageReadCompute);
-        b.write(next, graph::Use::StorageWriteCompute);
-      },
-      [raw, history, next, samples, &in](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = in.pipelines.radianceAccumulate;
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter()
-            .storageImage(1, pc.image(raw).view())
-            .storageImage(2, pc.image(history).view())
-            .storageImage(3, pc.image(next).view())
-            .push(pc.cmd, pipe);
-        uint32_t push[4] = {in.size.width, in.size.height, samples, 0};
-        vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), push);
-        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
-      });
-  return next;
 }
 
 } // namespace rayster::render

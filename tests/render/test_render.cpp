@@ -2,9 +2,11 @@
 // the two G-buffer producers, and the error paths a user meets.
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
+#include "tests/render/fixtures.h"
 #include "tests/render/golden.h"
 #include "tests/render/run_rayster.h"
 
@@ -106,7 +108,7 @@ TEST(Render, AovsAreWrittenBesideTheOutput) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (const char* name : {"depth", "normal", "albedo", "material", "emissive", "shadow-raw", "shadow-denoised",
                            "reflection-raw", "reflection-denoised", "ao-raw", "ao-denoised", "indirect-raw",
-                           "indirect-denoised"}) {
+                           "indirect-denoised", "shadow0-raw", "shadow0-denoised"}) {
     auto png = readPng(dir / (std::string("w.") + name + ".png"));
     ASSERT_TRUE(png.ok()) << name;
     auto exr = readExr(dir / (std::string("w.") + name + ".exr"));
@@ -119,9 +121,35 @@ TEST(Render, AovsAreWrittenBesideTheOutput) {
   // Shadows are a fraction: the accumulated visibility stays within [0, 1].
   auto shadow = readExr(dir / "w.shadow-denoised.exr");
   for (size_t i = 0; i < shadow->rgba.size(); i += 4) ASSERT_TRUE(shadow->rgba[i] >= 0.0f && shadow->rgba[i] <= 1.0f);
+  // The whitted scene has one shadowed light: layer 0 is "shadow-raw", there is no light 1.
+  EXPECT_EQ(readExr(dir / "w.shadow0-raw.exr")->rgba, readExr(dir / "w.shadow-raw.exr")->rgba);
+  EXPECT_FALSE(std::filesystem::exists(dir / "w.shadow1-raw.exr"));
   auto bad = runRayster("render --size 32x24 --aov normal,bogus -o " + (dir / "x.png").string());
   EXPECT_EQ(bad.exitCode, 2) << bad.output;
   EXPECT_NE(bad.output.find("bogus"), std::string::npos) << bad.output;
+}
+
+TEST(Render, PerLightShadowAovs) {
+  // The alpha-mask model's point light plus a second one from the scene file: one visibility layer
+  // each, raw and denoised.
+  auto dir = testDir();
+  writeAlphaMaskGltf(dir);
+  std::ofstream(dir / "two.json") << R"({"models": [{"path": "alpha-mask.gltf"}],
+    "lights": [{"type": "point", "position": [-2, 3, 4], "color": [1, 1, 1], "intensity": 40, "radius": 0.1}]})";
+  RunResult r = runRayster("render " + (dir / "two.json").string() +
+                           " --size 64x48 --frames 3 --aov shadow-raw,shadow0-raw,shadow1-raw,shadow1-denoised,shadow2-raw -o " +
+                           (dir / "t.png").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  auto raw0 = readExr(dir / "t.shadow0-raw.exr"), raw1 = readExr(dir / "t.shadow1-raw.exr");
+  auto denoised1 = readExr(dir / "t.shadow1-denoised.exr");
+  ASSERT_TRUE(raw0.ok() && raw1.ok() && denoised1.ok());
+  EXPECT_EQ(raw0->rgba, readExr(dir / "t.shadow-raw.exr")->rgba) << "shadow-raw is layer 0";
+  EXPECT_NE(raw0->rgba, raw1->rgba) << "two lights cast different shadows";
+  EXPECT_FALSE(rejectEmpty(*denoised1, 64, 48).has_value());
+  for (size_t i = 0; i < denoised1->rgba.size(); i += 4)
+    ASSERT_TRUE(denoised1->rgba[i] >= 0.0f && denoised1->rgba[i] <= 1.0f) << denoised1->rgba[i];
+  EXPECT_FALSE(std::filesystem::exists(dir / "t.shadow2-raw.exr")) << "the scene has no third light";
+  EXPECT_NE(r.output.find("shadow2-raw"), std::string::npos) << "a skipped AOV is reported:\n" << r.output;
 }
 
 // ---- error paths: one-line cause, documented exit code, no output file ----

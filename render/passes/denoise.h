@@ -1,0 +1,126 @@
+#pragma once
+// The denoisers of the hybrid frame (DESIGN.md §3, passes 3 and 5): reusable compute passes over
+// the G-buffer, with temporal history in ping-pong History images owned by the caller.
+//   writeSurface       the denoisers' compact view of the G-buffer (kept a frame longer)
+//   denoiseShadows     per-light visibility: temporal running mean + 3 à-trous iterations (§9)
+//   denoiseRadiance    SVGF for a radiance signal (reflections; later indirect diffuse) (§12)
+// Each is also available step by step (the tests compare every kernel with a CPU reference).
+// Parameters and push constants: shaders/shared/denoise.h. Pass names carry the à-trous step
+// ("shadow-atrous-2"), so per-pass timings keep the iterations apart.
+//
+// Cost (expected on an H100 at 1080p, not measured yet): every pass is 8×8 workgroups of
+// texelFetch from L1/L2-resident neighbourhoods. Shadows: temporal ≈ 30–40 µs (reprojection once
+// per pixel, all lights in one invocation), each à-trous ≈ 30–50 µs (geometry weights once per
+// tap for all lights) → ≈ 0.15–0.2 ms for one light, + ~20 % per extra light. SVGF: temporal
+// ≈ 40 µs, variance ≈ 20 µs (7×7 only where n < 4), 5 à-trous ≈ 35–50 µs each → ≈ 0.25–0.3 ms,
+// above the 0.2 ms budget until the step-1 iteration and the 3×3 variance blur read a shared-memory
+// tile and the surface shrinks to 8 B/px.
+#include <string>
+
+#include <volk.h>
+
+#include "graph/graph.h"
+#include "rhi/pipelines.h"
+
+namespace rayster::render {
+
+// Surface texel: linear view depth (float bits; 0 for sky), its screen-space slope, oct shading
+// normal (packSnorm2x16), id (gpu::kBackgroundId for sky). 16 B/px; see shaders/lib/denoise.glsl.
+inline constexpr VkFormat kSurfaceFormat = VK_FORMAT_R32G32B32A32_UINT;
+// Shadow history: layers 0..L−1 the running mean per light, layer L the history length n. fp32:
+// the static running mean is exact (1/(1+n) steps far above the ulp; 16 bits freeze it, §9).
+inline constexpr VkFormat kShadowHistoryFormat = VK_FORMAT_R32_SFLOAT;
+inline constexpr VkFormat kShadowDenoisedFormat = VK_FORMAT_R16_SFLOAT;  // per light, for lighting
+// SVGF: colour history (fp32: the static exact running mean), moments history (μ1, μ2, n, -),
+// working images rgb colour + a variance.
+inline constexpr VkFormat kSvgfColorHistoryFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+inline constexpr VkFormat kSvgfMomentsHistoryFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+inline constexpr VkFormat kSvgfWorkingFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+// Image descriptions for the caller's History objects.
+rhi::ImageDesc surfaceDesc(VkExtent2D size);
+rhi::ImageDesc shadowHistoryDesc(VkExtent2D size, uint32_t lights);
+rhi::ImageDesc svgfColorHistoryDesc(VkExtent2D size);
+rhi::ImageDesc svgfMomentsHistoryDesc(VkExtent2D size);
+
+struct DenoisePipelines {
+  rhi::Pipeline surface;
+  rhi::Pipeline shadowTemporal, shadowAtrous;
+  rhi::Pipeline svgfTemporal, svgfVariance, svgfAtrous, svgfAtrousHistory;
+  static DenoisePipelines create(rhi::Context& ctx);
+};
+
+// What every denoise pass needs besides its images (no scene, so tests can run them alone);
+// copied into the passes, so a temporary will do.
+struct DenoiseInputs {
+  const DenoisePipelines& pipelines;
+  VkSampler nearest;  // inputs are read with texelFetch only
+  VkExtent2D size;
+};
+
+// What happened since the previous frame.
+struct TemporalState {
+  bool moving = false;  // camera or objects moved: αmin 0.2, clamping, capped history (§9, §12)
+  bool reset = false;   // first frame of a run or a camera cut: every history is dropped
+};
+
+struct SurfacePair {
+  graph::ImageHandle current, previous;  // kSurfaceFormat, this frame's and the last frame's
+};
+struct HistoryPair {
+  graph::ImageHandle previous, next;  // read, written (never the same image)
+};
+
+// A. The surface image from the G-buffer (depth D32 or R32F reversed Z, normals, id), written into
+// `out` (kSurfaceFormat, usually a History's next image). zNear/zFar: the camera's planes.
+graph::ImageHandle writeSurface(graph::RenderGraph& graph, const DenoiseInputs& in, graph::ImageHandle depth,
+                                graph::ImageHandle normals, graph::ImageHandle id, graph::ImageHandle out, float zNear,
+                                float zFar);
+
+// C. Shadow denoiser, also for AO (any 0/1 visibility). raw: R16F array, one layer per light;
+// history: shadowHistoryDesc images. name: prefix of its passes and images.
+struct ShadowDenoised {
+  graph::ImageHandle temporal;  // = history.next (running means; layer L holds n)
+  graph::ImageHandle variance;  // R16F array: per-light variance for the à-trous value weight
+  graph::ImageHandle denoised;  // R16F array, one layer per light
+};
+ShadowDenoised denoiseShadows(graph::RenderGraph& graph, const DenoiseInputs& in, SurfacePair surface,
+                              graph::ImageHandle motion, graph::ImageHandle raw, HistoryPair history,
+                              TemporalState state, const std::string& name = "shadow");
+// The temporal step alone: fills .temporal and .variance.
+ShadowDenoised shadowTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, SurfacePair surface,
+                              graph::ImageHandle motion, graph::ImageHandle raw, HistoryPair history, uint32_t lights,
+                              TemporalState state, const std::string& name = "shadow");
+// One à-trous iteration over the first `lights` layers of `input`, into `output` (returned), an
+// image from createShadowImage; ping-pong between two of them, never in place.
+graph::ImageHandle createShadowImage(graph::RenderGraph& graph, VkExtent2D size, uint32_t lights,
+                                     const std::string& name);
+graph::ImageHandle shadowAtrous(graph::RenderGraph& graph, const DenoiseInputs& in, graph::ImageHandle surface,
+                                graph::ImageHandle input, graph::ImageHandle variance, graph::ImageHandle output,
+                                uint32_t lights, uint32_t step, const std::string& name = "shadow");
+
+// D. SVGF for a radiance signal (RGBA16F). name: prefix of its passes and images ("reflection").
+// material: the G-buffer material image (.r perceptual roughness; ≤ 0.05 stays sharp).
+struct RadianceDenoised {
+  graph::ImageHandle temporal;  // = color.next after the temporal pass (the running mean when static)
+  graph::ImageHandle moments;   // = moments.next (μ1, μ2, n)
+  graph::ImageHandle variance;  // working image after the variance estimate (rgb colour, a variance)
+  graph::ImageHandle denoised;  // RGBA16F, rgb denoised radiance (a: its variance)
+};
+RadianceDenoised denoiseRadiance(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
+                                 SurfacePair surface, graph::ImageHandle motion, graph::ImageHandle material,
+                                 graph::ImageHandle raw, HistoryPair color, HistoryPair moments, TemporalState state);
+void svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name, SurfacePair surface,
+                  graph::ImageHandle motion, graph::ImageHandle raw, HistoryPair color, HistoryPair moments,
+                  TemporalState state);
+graph::ImageHandle svgfVariance(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
+                                graph::ImageHandle surface, graph::ImageHandle color, graph::ImageHandle moments,
+                                TemporalState state);
+// One iteration from `input` into `output` (returned; both from createSvgfImage, never the same);
+// a valid `history` receives the output too (iteration 1 while moving).
+graph::ImageHandle createSvgfImage(graph::RenderGraph& graph, VkExtent2D size, const std::string& name);
+graph::ImageHandle svgfAtrous(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
+                              graph::ImageHandle surface, graph::ImageHandle material, graph::ImageHandle input,
+                              graph::ImageHandle output, uint32_t step, graph::ImageHandle history = {});
+
+}  // namespace rayster::render

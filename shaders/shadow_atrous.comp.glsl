@@ -1,0 +1,48 @@
+#version 460
+#include "lib/common.glsl"
+#include "lib/denoise.glsl"
+
+// Shadow denoiser, one edge-aware à-trous iteration (TECHNIQUES.md §9): 5×5 B3-spline taps at
+// p + step·(i, j), depth and normal weights (σz = 1, σn = 128), computed once for every light
+// layer, times a per-layer value weight exp(−|v_p − v_q| / (σl·sqrt(var_p) + ε)) with the variance
+// of the temporal pass (not propagated: each iteration uses the temporal estimate).
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0) uniform usampler2D surfaceTex;
+layout(set = 0, binding = 1) uniform sampler2DArray inputTex;
+layout(set = 0, binding = 2, r16f) uniform writeonly image2DArray outVisibility;
+layout(set = 0, binding = 3) uniform sampler2DArray varianceTex;
+layout(push_constant, scalar) uniform Push { AtrousPush pc; };
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(p), pc.size))) return;
+  const int layers = int(pc.layers);
+  Surface sp = decodeSurface(texelFetch(surfaceTex, p, 0));
+  float sum[kMaxShadowLights], weights[kMaxShadowLights], centre[kMaxShadowLights], scale[kMaxShadowLights];
+  for (int l = 0; l < layers; ++l) {
+    centre[l] = texelFetch(inputTex, ivec3(p, l), 0).r;
+    scale[l] = 1.0 / (kSigmaLuminance * sqrt(texelFetch(varianceTex, ivec3(p, l), 0).r) + kShadowValueEpsilon);
+    sum[l] = centre[l];
+    weights[l] = 1.0;
+  }
+  if (!isSky(sp)) {
+    for (int l = 0; l < layers; ++l) sum[l] = weights[l] = 0.0;
+    for (int j = -2; j <= 2; ++j)
+      for (int i = -2; i <= 2; ++i) {
+        ivec2 q = p + int(pc.step) * ivec2(i, j);
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(pc.size)))) continue;
+        Surface sq = decodeSurface(texelFetch(surfaceTex, q, 0));
+        if (isSky(sq)) continue;
+        const bool isCentre = i == 0 && j == 0;
+        float w = b3(i) * b3(j) * (isCentre ? 1.0 : geometryWeight(sp, sq, vec2(int(pc.step) * ivec2(i, j))));
+        if (w <= 0.0) continue;
+        for (int l = 0; l < layers; ++l) {
+          float v = texelFetch(inputTex, ivec3(q, l), 0).r;
+          float wl = isCentre ? w : w * exp(-abs(centre[l] - v) * scale[l]);
+          sum[l] += wl * v;
+          weights[l] += wl;
+        }
+      }
+  }
+  for (int l = 0; l < layers; ++l) imageStore(outVisibility, ivec3(p, l), vec4(sum[l] / weights[l]));
+}
