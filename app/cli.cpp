@@ -46,7 +46,7 @@ int run(int argc, char** argv) {
   cli.add_flag("--no-debug-labels", noLabels, "Do not emit debug labels and object names (on by default)");
 
   RenderOptions ro;
-  std::string size = "1280x720", primary = "auto", tonemap = "aces", taa = "on";
+  std::string size = "1280x720", primary = "auto", tonemap = "aces", taa = "on", mode = "hybrid";
   CLI::App* render = cli.add_subcommand("render", "Render a scene to an image, headless");
   render->add_option("scene", ro.scene, "Scene: a .gltf/.glb, .obj or .json scene file, or builtin:NAME (cornell, whitted, spheres, instances[:N]); default builtin:whitted");
   render->add_option("-o,--output", ro.output, "Output image, .png (tonemapped) or .exr (linear HDR)");
@@ -55,6 +55,10 @@ int run(int argc, char** argv) {
   render->add_option("--frames", ro.settings.frames, "Frames to accumulate for the static camera (default 16)")
       ->check(CLI::Range(1u, 100000u));
   render->add_option("--seed", ro.settings.seed, "Random seed; the same seed gives the same image");
+  render->add_option("--mode", mode,
+                     "hybrid (raster/traced G-buffer + ray-traced effects), pathtrace (the reference) or raster "
+                     "(no ray tracing)")
+      ->check(CLI::IsMember({"hybrid", "pathtrace", "raster"}));
   render->add_option("--primary", primary, "G-buffer producer: raster, rt (traced primary rays) or auto")
       ->check(CLI::IsMember({"raster", "rt", "auto"}));
   render->add_option("--exposure", ro.settings.exposureEv, "Exposure in EV stops (default 0)");
@@ -140,6 +144,9 @@ int run(int argc, char** argv) {
     ro.settings.primary = primary == "raster" ? render::Primary::Raster
                           : primary == "rt"   ? render::Primary::Traced
                                               : render::Primary::Auto;
+    ro.settings.mode = mode == "pathtrace" ? render::Mode::PathTrace
+                       : mode == "raster"  ? render::Mode::Raster
+                                           : render::Mode::Hybrid;
     ro.settings.tonemap = *render::parseTonemapper(tonemap);  // CLI11 checked the name
     ro.settings.taa = taa == "on";
     ro.settings.ao = ao == "on";

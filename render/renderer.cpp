@@ -89,6 +89,14 @@ bool isCameraCut(const scene::Camera& before, const scene::Camera& now) {
 
 } // namespace
 
+const char* modeName(Mode m) {
+  switch (m) {
+    case Mode::PathTrace: return "pathtrace";
+    case Mode::Raster: return "raster";
+    default: return "hybrid";
+  }
+}
+
 const char* primaryName(Primary p) {
   switch (p) {
     case Primary::Raster: return "raster";
@@ -494,6 +502,10 @@ Result<std::unique_ptr<Renderer>> Renderer::create(rhi::Context& ctx, const scen
   return std::unique_ptr<Renderer>(new Renderer(std::make_unique<Impl>(ctx, scene, std::move(gpu.value()))));
 }
 
-Result<RenderOutput> Renderer::render(const RenderSettings& settings) { return impl_->render(settings); }
+Result<RenderOutput> Renderer::render(const RenderSettings& settings) {
+  if (settings.mode != Mode::Hybrid)
+    return makeError(ExitCode::BadArguments, "--mode {} is not implemented yet", modeName(settings.mode));
+  return impl_->render(settings);
+}
 
 } // namespace rayster::render

@@ -23,10 +23,16 @@ namespace rayster::render {
 enum class Primary { Raster, Traced, Auto };
 const char* primaryName(Primary p);
 
+// What renders the frame: the hybrid pipeline, the reference path tracer, or rasterisation only
+// (the baseline, and the fallback on devices without ray-tracing pipelines).
+enum class Mode { Hybrid, PathTrace, Raster };
+const char* modeName(Mode m);
+
 struct RenderSettings {
   uint32_t width = 1280, height = 720;
   uint32_t frames = 16;  // frames rendered; a static camera's denoisers accumulate them all
   uint32_t seed = 0;
+  Mode mode = Mode::Hybrid;
   Primary primary = Primary::Auto;
   float exposureEv = 0.0f;
   Tonemapper tonemap = Tonemapper::Aces;
@@ -81,6 +87,7 @@ struct RenderOutput {
   Image8 ldr;  // tonemapped, sRGB-encoded
   ImageF hdr;  // linear radiance
   std::vector<std::pair<std::string, ImageF>> aovs;  // raw values, RGBA float (see aovNames())
+  Mode modeUsed = Mode::Hybrid;
   Primary primaryUsed = Primary::Raster;
   double rasterGBufferMs = -1, tracedGBufferMs = -1;  // measured by --primary auto, else -1
   std::vector<PassStats> passes;                      // GPU time per pass over all frames
