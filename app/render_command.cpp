@@ -66,14 +66,17 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
 } // namespace
 
 // The PNG of an AOV is for looking at: normals map to colours, stored sRGB albedo is decoded so the
-// PNG encoder does not encode it twice. The EXR keeps the raw values.
+// PNG encoder does not encode it twice, and alpha is opaque (stages keep other data there, such
+// as SVGF's variance). The EXR keeps the raw values.
 ImageF aovForDisplay(const std::string& name, ImageF img) {
-  for (size_t i = 0; i < img.rgba.size(); i += 4)
+  for (size_t i = 0; i < img.rgba.size(); i += 4) {
     for (int c = 0; c < 3; ++c) {
       float& v = img.rgba[i + c];
       if (name == "normal") v = v * 0.5f + 0.5f;
       if (name == "albedo") v = srgbToLinear(v);
     }
+    img.rgba[i + 3] = 1.0f;
+  }
   return img;
 }
 
