@@ -14,23 +14,12 @@ for scene in whitted cornell spheres; do
   $R render builtin:$scene --size 1920x1080 --frames 128 --seed 1 --primary auto --timings \
     --json "$OUT/$scene.json" -o "$OUT/$scene.png" 2>&1 | grep -vE '^rayster: (wrote|loaded)' || exit 1
 done
-# N lights scattered above the whitted scene (deterministic), sky on.
+# N lights scattered above the whitted scene (bench/scenes/whitted-lightsN.json, deterministic).
 for n in 8 256; do
-  python3 - "$n" >"$OUT/lights$n.json" <<'PY'
-import json, math, sys
-n = int(sys.argv[1])
-lights = []
-for i in range(n):
-    a = 2 * math.pi * i / n
-    r = 2.0 + 2.0 * ((i * 7919) % 97) / 97.0
-    lights.append({"type": "point", "position": [r * math.cos(a), 1.5 + (i % 5) * 0.4, r * math.sin(a)],
-                   "color": [1, 0.9, 0.8], "intensity": 40.0 / n, "radius": 0.05})
-print(json.dumps({"models": [{"path": "builtin:whitted"}], "lights": lights, "environment": "sky"}))
-PY
   echo "== whitted with $n lights"
-  $R render "$OUT/lights$n.json" --size 1920x1080 --frames 128 --seed 1 --primary auto --timings \
-    --json "$OUT/lights$n-result.json" -o "$OUT/lights$n.png" 2>&1 | grep -vE '^rayster: (wrote|loaded)' || exit 1
+  $R render bench/scenes/whitted-lights$n.json --size 1920x1080 --frames 128 --seed 1 --primary auto --timings \
+    --json "$OUT/lights$n.json" -o "$OUT/lights$n.png" 2>&1 | grep -vE '^rayster: (wrote|loaded)' || exit 1
 done
-rm -f "$OUT"/lights*.png "$OUT"/lights8.json "$OUT"/lights256.json
+rm -f "$OUT"/lights*.png
 # The device tool returns at most 8 files: pack the JSON results into one archive.
 (cd "$OUT" && tar czf effects-json.tgz ./*.json && rm -f ./*.json)

@@ -372,11 +372,14 @@ struct Renderer::Impl {
       const graph::ImageHandle motion = gb.motion;
 
       graph::ImageHandle raw = traceShadows(graph, in, gb, shadowLights());
-      const ShadowDenoised shadows =
-          denoiseShadows(graph, dn, surface, motion, raw,
-                         {shadowHistory.previous(graph, "shadow-history", f), shadowHistory.next(graph, "shadow-history", f)},
-                         temporal);
-      graph::ImageHandle visibility = shadows.denoised;
+      // Many-light mode traces no shadow layers: lighting reads none, so nothing to denoise.
+      graph::ImageHandle visibility = raw;
+      if (shadowLights() > 0)
+        visibility = denoiseShadows(graph, dn, surface, motion, raw,
+                                    {shadowHistory.previous(graph, "shadow-history", f),
+                                     shadowHistory.next(graph, "shadow-history", f)},
+                                    temporal)
+                         .denoised;
       graph::ImageHandle specularRaw = traceSpecular(graph, in, gb);
       graph::ImageHandle specular =
           denoiseRadiance(graph, dn, "reflection", surface, motion, gb.material, specularRaw,
