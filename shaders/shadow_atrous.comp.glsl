@@ -1,11 +1,13 @@
 #version 460
+#extension GL_EXT_control_flow_attributes : require
 #include "lib/common.glsl"
 #include "lib/denoise.glsl"
 
 // Shadow denoiser, one edge-aware à-trous iteration (TECHNIQUES.md §9): 5×5 B3-spline taps at
 // p + step·(i, j), depth and normal weights (σz = 1, σn = 128), computed once for every light
 // layer, times a per-layer value weight exp(−|v_p − v_q| / (σl·sqrt(var_p) + ε)) with the variance
-// of the temporal pass (not propagated: each iteration uses the temporal estimate).
+// of the temporal pass (not propagated: each iteration uses the temporal estimate). The per-layer
+// loops run to the constant kMaxShadowLights, unrolled, so the arrays stay in registers.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform usampler2D surfaceTex;
 layout(set = 0, binding = 1) uniform sampler2DArray inputTex;
@@ -19,14 +21,15 @@ void main() {
   const int layers = int(pc.layers);
   Surface sp = decodeSurface(texelFetch(surfaceTex, p, 0));
   float sum[kMaxShadowLights], weights[kMaxShadowLights], centre[kMaxShadowLights], scale[kMaxShadowLights];
-  for (int l = 0; l < layers; ++l) {
+  [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l) {
+    if (l >= layers) break;
     centre[l] = texelFetch(inputTex, ivec3(p, l), 0).r;
     scale[l] = 1.0 / (kSigmaLuminance * sqrt(texelFetch(varianceTex, ivec3(p, l), 0).r) + kShadowValueEpsilon);
     sum[l] = centre[l];
     weights[l] = 1.0;
   }
   if (!isSky(sp)) {
-    for (int l = 0; l < layers; ++l) sum[l] = weights[l] = 0.0;
+    [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l) sum[l] = weights[l] = 0.0;
     for (int j = -2; j <= 2; ++j)
       for (int i = -2; i <= 2; ++i) {
         ivec2 q = p + int(pc.step) * ivec2(i, j);
@@ -36,7 +39,8 @@ void main() {
         const bool isCentre = i == 0 && j == 0;
         float w = b3(i) * b3(j) * (isCentre ? 1.0 : geometryWeight(sp, sq, vec2(int(pc.step) * ivec2(i, j))));
         if (w <= 0.0) continue;
-        for (int l = 0; l < layers; ++l) {
+        [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l) {
+          if (l >= layers) break;
           float v = texelFetch(inputTex, ivec3(q, l), 0).r;
           float wl = isCentre ? w : w * exp(-abs(centre[l] - v) * scale[l]);
           sum[l] += wl * v;
@@ -44,5 +48,6 @@ void main() {
         }
       }
   }
-  for (int l = 0; l < layers; ++l) imageStore(outVisibility, ivec3(p, l), vec4(sum[l] / weights[l]));
+  [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l)
+    if (l < layers) imageStore(outVisibility, ivec3(p, l), vec4(sum[l] / weights[l]));
 }
