@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
+#include "app/compare_command.h"
 #include "app/render_command.h"
 #include "core/error.h"
 #include "core/log.h"
@@ -109,13 +110,30 @@ int run(int argc, char** argv) {
   CLI::App* info = cli.add_subcommand("info", "List Vulkan devices and their ray-tracing capabilities");
 
   CompareOptions co;
-  CLI::App* compareCmd = cli.add_subcommand("compare", "Compare two images (PNG or EXR): PSNR, RMSE, per-pixel tolerance");
+  CLI::App* compareCmd = cli.add_subcommand(
+      "compare", "Compare two images (PNG or EXR): FLIP, HDR-FLIP, PSNR, RMSE, relative MSE (docs/compare.md)");
   compareCmd->add_option("reference", co.reference, "Reference image")->required();
   compareCmd->add_option("test", co.test, "Image to compare with the reference")->required();
+  compareCmd->add_option("--metric", co.metrics, "flip, hdr-flip, psnr, rmse, relmse or all (default); repeat or comma-separate")
+      ->delimiter(',')
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  compareCmd->add_option("--mask", co.mask, "Only pixels whose rgb is nonzero in this PNG count");
+  compareCmd->add_option("--heatmap", co.heatmap,
+                         "Write the per-pixel error as a .png: the FLIP map in magma (HDR-FLIP for an HDR reference), "
+                         "or an 8-bit difference ramp when no FLIP metric is computed");
+  compareCmd->add_option("--json", co.json, "Write every metric, the exposures and budgets as JSON to this file");
+  compareCmd->add_option("--budget", co.budgets,
+                         "METRIC=VALUE; exit 9 when over it (flip, hdr-flip, rmse, relmse: at most; psnr: at least); "
+                         "repeat or comma-separate")
+      ->delimiter(',')
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  compareCmd->add_option("--ppd", co.ppd, "FLIP observer, pixels per degree of visual angle (default 67)")
+      ->check(CLI::PositiveNumber);
   compareCmd->add_option("--tolerance", co.tolerance, "Per-channel tolerance in 1/255 steps (default 2)");
   compareCmd->add_option("--min-fraction", co.minFraction,
                          "Exit 9 unless at least this fraction of pixels is within tolerance (e.g. 0.999)");
-  compareCmd->add_option("--heatmap", co.heatmap, "Write a per-pixel difference heatmap (.png)");
   compareCmd->fallthrough();
   render->fallthrough();  // global options (-v, --validation, --device) also after the subcommand
   info->fallthrough();

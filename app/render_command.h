@@ -20,12 +20,6 @@ struct RenderOptions {
 
 int renderCommand(const RenderOptions& options);
 
-struct CompareOptions {
-  std::string reference, test, heatmap;
-  int tolerance = 2;
-  double minFraction = -1.0;  // < 0: report only
-};
-int compareCommand(const CompareOptions& options);
 int infoCommand();
 
 } // namespace rayster::app

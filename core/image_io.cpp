@@ -229,6 +229,12 @@ ImageF decodeSrgb8(const Image8& encoded) {
   return out;
 }
 
+Status writeFileAtomically(const fs::path& path, const std::string& contents) {
+  return writeAtomically(path, [&](const fs::path& temp, std::string& reason) {
+    return writeBytes(temp, std::vector<uint8_t>(contents.begin(), contents.end()), reason);
+  });
+}
+
 Result<ImageF> readImageLinear(const fs::path& path) {
   const std::string ext = lowerExtension(path);
   if (ext == ".png") {

@@ -2,6 +2,7 @@
 // Image files in and out. Writes are atomic (temp file + rename) so a crashed or failed render
 // never leaves a truncated image that a later `rayster compare` would mistake for a result.
 #include <filesystem>
+#include <string>
 
 #include "core/error.h"
 #include "core/image.h"
@@ -17,6 +18,9 @@ float linearToSrgb(float linear);
 // if it is missing (users pass -o out/frame.png).
 Status writePng(const std::filesystem::path& path, const Image8& image);
 Status writeExr(const std::filesystem::path& path, const ImageF& image); // RGBA, half channels
+
+// Any file (JSON reports): same atomic temp-and-rename and failure message as the images.
+Status writeFileAtomically(const std::filesystem::path& path, const std::string& contents);
 
 // Failures: ExitCode::BadInput, naming the file and the cause.
 Result<Image8> readPng(const std::filesystem::path& path);

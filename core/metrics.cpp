@@ -99,33 +99,54 @@ ImageDiff compare(const Image8& a, const Image8& b, int tolerance) {
   return diff;
 }
 
-double rmse(const ImageF& a, const ImageF& b) {
-  RAYSTER_ASSERT(a.width == b.width && a.height == b.height, "rmse() needs images of equal size");
-  RAYSTER_ASSERT(a.rgba.size() == b.rgba.size(), "rmse() needs images of equal size");
-  const size_t pixels = a.rgba.size() / 4;
-  if (pixels == 0) return 0.0;
-  double sum = 0;
-  for (size_t p = 0; p < pixels; ++p)
-    for (size_t c = 0; c < 3; ++c) {
-      const double d = static_cast<double>(a.rgba[p * 4 + c]) - b.rgba[p * 4 + c];
-      sum += d * d;
-    }
-  return std::sqrt(sum / (static_cast<double>(pixels) * 3.0));
+size_t PixelMask::count() const {
+  size_t n = 0;
+  for (uint8_t v : inside) n += v != 0;
+  return n;
 }
 
-double relMse(const ImageF& ref, const ImageF& test, double eps) {
-  RAYSTER_ASSERT(ref.width == test.width && ref.height == test.height, "relMse() needs images of equal size");
-  RAYSTER_ASSERT(ref.rgba.size() == test.rgba.size(), "relMse() needs images of equal size");
-  const size_t pixels = ref.rgba.size() / 4;
-  if (pixels == 0) return 0.0;
+PixelMask maskFromImage(const Image8& image) {
+  PixelMask mask;
+  mask.width = image.width;
+  mask.height = image.height;
+  mask.inside.resize(image.rgba.size() / 4);
+  for (size_t p = 0; p < mask.inside.size(); ++p)
+    mask.inside[p] = (image.rgba[p * 4] | image.rgba[p * 4 + 1] | image.rgba[p * 4 + 2]) != 0;
+  return mask;
+}
+
+namespace {
+// Mean over covered pixels and rgb of term(reference value, test value).
+template <class Term>
+double maskedChannelMean(const ImageF& a, const ImageF& b, const PixelMask& mask, Term&& term) {
+  RAYSTER_ASSERT(a.width == b.width && a.height == b.height, "metrics need images of equal size");
+  RAYSTER_ASSERT(a.rgba.size() == b.rgba.size(), "metrics need images of equal size");
+  RAYSTER_ASSERT(mask.empty() || (mask.width == a.width && mask.height == a.height &&
+                                  mask.inside.size() * 4 == a.rgba.size()),
+                 "the mask must match the images' size");
+  const size_t pixels = a.rgba.size() / 4;
   double sum = 0;
-  for (size_t p = 0; p < pixels; ++p)
-    for (size_t c = 0; c < 3; ++c) {
-      const double r = ref.rgba[p * 4 + c];
-      const double d = static_cast<double>(test.rgba[p * 4 + c]) - r;
-      sum += d * d / (r * r + eps);
-    }
-  return sum / (static_cast<double>(pixels) * 3.0);
+  size_t counted = 0;
+  for (size_t p = 0; p < pixels; ++p) {
+    if (!mask.covers(p)) continue;
+    ++counted;
+    for (size_t c = 0; c < 3; ++c) sum += term(static_cast<double>(a.rgba[p * 4 + c]), static_cast<double>(b.rgba[p * 4 + c]));
+  }
+  return counted == 0 ? 0.0 : sum / (static_cast<double>(counted) * 3.0);
+}
+} // namespace
+
+double rmse(const ImageF& a, const ImageF& b, const PixelMask& mask) {
+  return std::sqrt(maskedChannelMean(a, b, mask, [](double x, double y) { return (x - y) * (x - y); }));
+}
+
+double psnr(const ImageF& a, const ImageF& b, const PixelMask& mask) {
+  const double error = rmse(a, b, mask);
+  return error == 0 ? std::numeric_limits<double>::infinity() : -20.0 * std::log10(error);
+}
+
+double relMse(const ImageF& ref, const ImageF& test, double eps, const PixelMask& mask) {
+  return maskedChannelMean(ref, test, mask, [eps](double r, double t) { return (t - r) * (t - r) / (r * r + eps); });
 }
 
 } // namespace rayster

@@ -153,3 +153,45 @@ TEST(FloatMetrics, RelMseByHand) {
   EXPECT_NEAR(relMse(black, dim), 1.0, 1e-6);
   EXPECT_EQ(relMse(ref, ref), 0.0);
 }
+
+TEST(MetricsPsnr, IdenticalIsInfinite) {
+  const ImageF a = gradientF(4, 3);
+  EXPECT_TRUE(std::isinf(psnr(a, a)) && psnr(a, a) > 0);
+}
+
+TEST(MetricsPsnr, ByHand) {
+  // One channel of one pixel off by 0.3 in a 2x1 image: MSE = 0.09 / 6 = 0.015,
+  // PSNR = -10 log10(0.015) = 18.2391 dB.
+  ImageF a = ImageF::make(2, 1), b = ImageF::make(2, 1);
+  b.pixel(1, 0)[1] = 0.3f;
+  EXPECT_NEAR(psnr(a, b), -10.0 * std::log10(0.09 / 6.0), 1e-5);
+  EXPECT_NEAR(psnr(a, b), 18.2391, 1e-4);
+}
+
+TEST(MetricsMask, FromImage) {
+  Image8 image = Image8::make(3, 1);
+  image.pixel(1, 0)[2] = 1;   // any nonzero rgb counts
+  image.pixel(2, 0)[3] = 255; // alpha alone does not
+  const PixelMask mask = maskFromImage(image);
+  ASSERT_EQ(mask.inside.size(), 3u);
+  EXPECT_EQ(mask.count(), 1u);
+  EXPECT_FALSE(mask.covers(0));
+  EXPECT_TRUE(mask.covers(1));
+  EXPECT_FALSE(mask.covers(2));
+  EXPECT_TRUE(PixelMask{}.covers(2));  // empty: everything
+}
+
+TEST(MetricsMask, RestrictsTheMean) {
+  // Errors only in pixel 0 (r + 1) and pixel 1 (b + 2): masking pixel 0 out leaves (2^2) / 3 channels.
+  ImageF a = ImageF::make(2, 1), b = ImageF::make(2, 1);
+  b.pixel(0, 0)[0] = 1.0f;
+  b.pixel(1, 0)[2] = 2.0f;
+  const PixelMask onlySecond{2, 1, {0, 1}};
+  EXPECT_NEAR(rmse(a, b, onlySecond), std::sqrt(4.0 / 3.0), 1e-12);
+  const PixelMask onlyFirst{2, 1, {1, 0}};
+  EXPECT_NEAR(rmse(a, b, onlyFirst), std::sqrt(1.0 / 3.0), 1e-12);
+  EXPECT_NEAR(psnr(a, b, onlyFirst), -20.0 * std::log10(std::sqrt(1.0 / 3.0)), 1e-9);
+  // relMse against a black reference: d^2 / eps.
+  EXPECT_NEAR(relMse(a, b, 1e-2, onlyFirst), 1.0 / 1e-2 / 3.0, 1e-6);
+  EXPECT_NEAR(relMse(a, b, 1e-2, PixelMask{2, 1, {0, 0}}), 0.0, 0.0);
+}
