@@ -227,8 +227,10 @@ inline Rendered renderHdr(const std::filesystem::path& dir, const std::string& n
   auto png = dir / (name + ".png");
   auto exr = dir / (name + ".exr");
   // No TAA: its sub-pixel jitter would move the pixel centres the closed forms are evaluated at.
-  std::string args = fmt::format("render {} --size {}x{} --frames {} --seed 7 --taa off --hdr {} -o {} {}", scene.string(), w, h,
-                                 frames, exr.string(), png.string(), extra);
+  // Seed 7 unless `extra` names one.
+  const std::string seed = extra.find("--seed") == std::string::npos ? "--seed 7" : "";
+  std::string args = fmt::format("render {} --size {}x{} --frames {} {} --taa off --hdr {} -o {} {}", scene.string(), w, h,
+                                 frames, seed, exr.string(), png.string(), extra);
   if (!aovs.empty()) args += " --aov " + aovs;
   RunResult r = runRayster(args);
   EXPECT_EQ(r.exitCode, 0) << r.output;
