@@ -89,6 +89,68 @@ TEST(PathTrace, LambertPlaneUnderPointLight) {
               pixels);
 }
 
+// A small emissive square (radiance Le, side a, facing down at height 2) over the same Lambert
+// plane: next-event estimation on the emissive-triangle list, MIS with BSDF rays that hit it.
+// Small-source closed form L = albedo/π · Le·a²·cosθr·cosθe / d² (error ~ (a/d)² < 1 %).
+TEST(PathTrace, LambertPlaneUnderEmissiveSquare) {
+  auto dir = testDir();
+  SceneSpec s;
+  MaterialSpec grey{glm::vec3(0.5f), 0.0f, 1.0f};
+  grey.ior = 1.0f;
+  s.models.push_back({"floor", unitQuad(), grey, glm::vec3(20, 20, 1), glm::vec3(-90, 0, 0), glm::vec3(0)});
+  const float le = 100.0f, side = 0.2f, height = 2.0f;
+  s.models.push_back({"lamp", unitQuad(), emitter(le), glm::vec3(side, side, 1), glm::vec3(90, 0, 0),
+                      glm::vec3(0, height, 0)});
+  s.lights = {darkLight()};
+  s.camera = {{0, 4, 3}, {0, 0, 0}, 50};
+  const int w = 64, h = 48;
+  Rendered r = pathTrace(dir, "lamp", writeScene(dir, "lamp", s).string(), w, h, 16);
+  ASSERT_FALSE(r.hdr.empty());
+  double sumRatio = 0;
+  int pixels = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      glm::vec3 p;
+      if (!hitHorizontal(pixelRay(s.camera, w, h, x, y), 0.0f, p) || std::abs(p.x) > 1.5f || std::abs(p.z) > 1.5f)
+        continue;
+      const glm::vec3 d = glm::vec3(0, height, 0) - p;
+      const double dist2 = glm::dot(d, d), cosine = height / std::sqrt(dist2);
+      const double expected = 0.5 / kPi * le * side * side * cosine * cosine / dist2;
+      sumRatio += r.hdr.pixel(x, y)[0] / expected;
+      ++pixels;
+    }
+  ASSERT_GT(pixels, 500);
+  EXPECT_NEAR(sumRatio / pixels, 1.0, 0.02) << "mean of rendered / closed form";
+  std::printf("[pathtrace] emissive square: mean ratio %.5f over %d px\n", sumRatio / pixels, pixels);
+}
+
+// A clear glass ball (ior 1.5, a volume) in a uniform environment of 1 vanishes too: every
+// reflection and refraction carries radiance 1 (up to paths cut at --max-depth).
+TEST(PathTrace, GlassFurnaceSphereVanishes) {
+  auto dir = testDir();
+  SceneSpec s;
+  s.models.push_back({"ball", unitSphere(48), glass(1.5f, 1.0f), glm::vec3(2.0f)});
+  s.lights = {darkLight()};
+  s.environment = uniformEnvironment(1.0f);
+  s.camera = {{0, 0, 4}, {0, 0, 0}, 40};
+  const int w = 48, h = 48;
+  Rendered r = renderHdr(dir, "glass", writeScene(dir, "glass", s), w, h, 16, "", "--mode pathtrace --max-depth 16");
+  ASSERT_FALSE(r.hdr.empty());
+  double sum = 0;
+  int pixels = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      Ray ray = pixelRay(s.camera, w, h, x, y);
+      const float b = glm::dot(ray.origin, ray.dir);
+      if (glm::dot(ray.origin, ray.origin) - b * b > 0.81f) continue;
+      sum += r.hdr.pixel(x, y)[1];
+      ++pixels;
+    }
+  ASSERT_GT(pixels, 400);
+  EXPECT_NEAR(sum / pixels, 1.0, 0.02) << "glass furnace: the ball's mean radiance";
+  std::printf("[pathtrace] glass furnace: ball mean %.5f over %d px\n", sum / pixels, pixels);
+}
+
 // An opaque black dielectric (ior 1.5, roughness 0) seen head-on in a uniform environment of 1
 // reflects F0 = ((η−1)/(η+1))² = 0.04.
 TEST(PathTrace, FresnelF0AtIor150) {
