@@ -4,6 +4,7 @@
 // on every emitter, so the MIS weight of a BSDF ray that hits one needs no table lookup; scenes
 // whose emitters differ greatly in radiance pay some variance for it. Textured emission is
 // evaluated per sample (TEXCOORD_0). Animated instances keep their upload-time positions here.
+// Emissive analytic spheres are not in the list: BSDF rays find them (with MIS weight 1).
 #include <algorithm>
 
 #include "render/gpu_scene.h"

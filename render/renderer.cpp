@@ -467,6 +467,10 @@ struct Renderer::Impl {
         }
         for (const std::string& name : s.aovs) {
           auto it = stages.find(name);
+          if (name == "variance") {
+            log::info("AOV 'variance' skipped: only --mode pathtrace has it");
+            continue;
+          }
           if (it == stages.end()) {  // a light the scene does not have
             log::info("AOV '{}' skipped: the scene has {} shadowed light(s)", name, shadowLights());
             continue;

@@ -1,6 +1,7 @@
 // The reference path tracer (--mode pathtrace) against closed forms (white furnace, Lambert plane
 // under a point light, Fresnel F0), its Monte Carlo behaviour (determinism, the 1/√N convergence
 // rate) and the hybrid frame (alpha masks, the Cornell box). Real binary, validation on, small sizes.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -48,6 +49,9 @@ TEST(PathTrace, WhiteFurnaceSphereVanishes) {
   const double mean = sum / pixels;
   EXPECT_NEAR(mean, 1.0, 0.01) << "white furnace: the sphere's mean radiance";
   EXPECT_NEAR(r.hdr.pixel(0, 0)[0], 1.0f, 1e-3f) << "the environment itself";
+  // NEE and BSDF samples differ, so the mean has a variance; the background's is exactly 0.
+  EXPECT_GT(varianceSum, 0.0) << "variance AOV";
+  EXPECT_EQ(r.aovs.at("variance").pixel(0, 0)[0], 0.0f) << "variance of the environment";
   std::printf("[pathtrace] white furnace: sphere mean %.5f over %d px, mean variance of the mean %.2e\n", mean,
               pixels / 3, varianceSum / (pixels / 3));
 }
@@ -233,8 +237,19 @@ TEST(PathTrace, AlphaMaskMatchesHybrid) {
   Image8 pt = renderOk(dir, "pt", scene + " --mode pathtrace --frames 48 --seed 3", 64, 48);
   Image8 hy = renderOk(dir, "hybrid", scene + " --frames 8 --seed 3", 64, 48);
   const double d = meanAbsDiff(pt, hy);
-  EXPECT_LT(d, 0.06) << "path tracer vs hybrid on the alpha-mask scene";
-  std::printf("[pathtrace] alpha mask: mean |pathtrace - hybrid| = %.4f\n", d);
+  // The checker's cut-out squares cover a few % of the image. Measured on lavapipe: 0.03 % of pixels
+  // apart (mean 0.0064); with any-hit disabled in the path tracer (rays forced opaque) 3.45 % (0.019).
+  size_t apart = 0;
+  for (size_t i = 0; i < pt.rgba.size() && i < hy.rgba.size(); i += 4) {
+    int diff = 0;
+    for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(int(pt.rgba[i + c]) - int(hy.rgba[i + c])));
+    apart += diff > 64;
+  }
+  const double apartFraction = double(apart) / double(pt.rgba.size() / 4);
+  EXPECT_LT(d, 0.02) << "path tracer vs hybrid on the alpha-mask scene";
+  EXPECT_LT(apartFraction, 0.01) << "pixels more than 64/255 apart";
+  std::printf("[pathtrace] alpha mask: mean |pathtrace - hybrid| = %.4f, %.2f %% of pixels > 64/255 apart\n", d,
+              100 * apartFraction);
 }
 
 // Both renderers of builtin:cornell converge to similar images. Loose bound: the hybrid frame has
