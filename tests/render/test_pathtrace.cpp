@@ -255,6 +255,7 @@ TEST(PathTrace, AlphaMaskMatchesHybrid) {
 // Both renderers of builtin:cornell converge to similar images. Loose bound: the hybrid frame has
 // one indirect bounce (denoised) and an approximate specular environment term, the path tracer
 // eight bounces; the bound catches a missing light, a wrong wall colour or a black image.
+// Measured on lavapipe: 0.044 (64 spp against 16 hybrid frames, 64×48).
 TEST(PathTrace, CornellConvergesNearHybrid) {
   auto dir = testDir();
   Image8 pt = renderOk(dir, "pt", "builtin:cornell --mode pathtrace --frames 64 --seed 2", 64, 48);
