@@ -32,8 +32,8 @@ PathTracer::PathTracer(rhi::Context& ctx, VkDescriptorSetLayout textures)
 Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTraceResources& r,
                                         const std::function<void(uint32_t)>& writeConstants) {
   if (s.frames == 0) return makeError(ExitCode::BadArguments, "--mode pathtrace needs at least one sample");
-  for (const std::string& name : s.aovs)
-    if (name != "variance") log::info("AOV '{}' skipped: --mode pathtrace writes only 'variance'", name);
+  const size_t skipped = size_t(std::count_if(s.aovs.begin(), s.aovs.end(), [](const std::string& n) { return n != "variance"; }));
+  if (skipped > 0) log::info("{} AOV(s) skipped: --mode pathtrace writes only 'variance'", skipped);
   const bool variance = std::find(s.aovs.begin(), s.aovs.end(), "variance") != s.aovs.end();
   const rhi::ImageDesc desc{kPathAccumulationFormat, s.width, s.height, 1,
                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT};
