@@ -56,6 +56,11 @@ int run(int argc, char** argv) {
   render->add_option("--frames", ro.settings.frames, "Frames to accumulate for the static camera (default 16)")
       ->check(CLI::Range(1u, 100000u));
   render->add_option("--seed", ro.settings.seed, "Random seed; the same seed gives the same image");
+  uint32_t spp = 0;
+  render->add_option("--spp", spp, "Samples per pixel of --mode pathtrace, one per frame (sets --frames)")
+      ->check(CLI::Range(1u, 100000u));
+  render->add_option("--max-depth", ro.settings.maxDepth, "Path vertices of --mode pathtrace (default 8)")
+      ->check(CLI::Range(1u, 64u));
   render->add_option("--mode", mode,
                      "hybrid (raster/traced G-buffer + ray-traced effects), pathtrace (the reference) or raster "
                      "(no ray tracing)")
@@ -104,7 +109,7 @@ int run(int argc, char** argv) {
                      "Also write intermediates as <stem>.<name>.png and .exr: all, or a comma-separated list of "
                      "depth, normal, albedo, material, emissive, shadow-raw, shadow-denoised, reflection-raw, "
                      "reflection-denoised, ao-raw, ao-denoised, indirect-raw, indirect-denoised, and per "
-                     "shadowed light N (0-7) shadowN-raw, shadowN-denoised");
+                     "shadowed light N (0-7) shadowN-raw, shadowN-denoised; --mode pathtrace: variance (of the mean)");
   render->add_option("--json", ro.jsonOutput, "Write per-pass GPU times and settings as JSON to this file");
 
   CLI::App* info = cli.add_subcommand("info", "List Vulkan devices and their ray-tracing capabilities");
@@ -167,6 +172,7 @@ int run(int argc, char** argv) {
                                            : render::Mode::Hybrid;
     ro.settings.tonemap = *render::parseTonemapper(tonemap);  // CLI11 checked the name
     ro.settings.taa = taa == "on";
+    if (spp > 0) ro.settings.frames = spp;
     ro.settings.ao = ao == "on";
     if (!indirect.empty()) ro.settings.indirect = indirect == "on";
     ro.validation = validation;

@@ -46,6 +46,7 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   j["height"] = o.settings.height;
   j["frames"] = o.settings.frames;
   j["seed"] = o.settings.seed;
+  j["mode"] = render::modeName(out.modeUsed);
   j["primary"] = render::primaryName(out.primaryUsed);
   j["tonemap"] = render::tonemapperName(o.settings.tonemap);
   j["taa"] = o.settings.taa;
@@ -149,8 +150,9 @@ int renderCommand(const RenderOptions& o) {
     if (o.printTimings) {
       std::printf("%-20s %10s %10s %10s\n", "pass", "median ms", "min ms", "p95 ms");
       for (const auto& p : out->passes) std::printf("%-20s %10.3f %10.3f %10.3f\n", p.name.c_str(), p.medianMs, p.minMs, p.p95Ms);
-      std::printf("%-20s %10.3f   (%s, primary %s, %ux%u)\n", "frame (GPU)", out->frameMedianMs,
-                  (*ctx)->info().name.c_str(), render::primaryName(out->primaryUsed), o.settings.width, o.settings.height);
+      std::printf("%-20s %10.3f   (%s, %s, primary %s, %ux%u)\n", "frame (GPU)", out->frameMedianMs,
+                  (*ctx)->info().name.c_str(), render::modeName(out->modeUsed), render::primaryName(out->primaryUsed),
+                  o.settings.width, o.settings.height);
     }
     if (!o.jsonOutput.empty()) {
       std::string tmp = o.jsonOutput + ".tmp";

@@ -1,13 +1,16 @@
 // The environment: an equirectangular HDR map in the bindless array (or the procedural sky), and
 // its diffuse irradiance as cosine-convolved order-2 spherical harmonics (Ramamoorthi & Hanrahan
 // 2001), projected here on the CPU once per scene.
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/half.h"
 #include "render/dfg.h"
 #include "render/gpu_scene.h"
 #include "rhi/upload.h"
 #include "rhi/context.h"
+#include "rhi/resources.h"
 #include "shaders/shared/types.h"
 
 namespace rayster::render {
@@ -37,6 +40,50 @@ std::array<float, 9> shBasis(glm::vec3 d) {
 glm::vec3 equirectDirection(float u, float v) {
   const float phi = (u - 0.5f) * 2.0f * kPi, theta = v * kPi;
   return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
+}
+
+// Cells of the importance-sampling distribution: the map's own resolution up to this (finer adds
+// memory and search steps, not much variance reduction).
+constexpr uint32_t kCdfMaxWidth = 512, kCdfMaxHeight = 256;
+constexpr uint32_t kSkyCdfWidth = 64, kSkyCdfHeight = 32;  // the procedural sky is smooth
+
+// A piecewise-constant distribution over w × h equirect cells ∝ luminance(radiance) × sinθ, laid out
+// for shaders/lib/pt_lights.glsl: [cell probabilities (h×w)] [row CDFs (h×w, inclusive, each ends
+// at 1)] [marginal CDF over rows (h, inclusive)]. `radiance(u, v)` is called at cell centres.
+template <typename F>
+std::vector<float> environmentCdf(uint32_t w, uint32_t h, F radiance) {
+  std::vector<float> out(size_t(w) * h * 2 + h);
+  float* prob = out.data();
+  float* rows = prob + size_t(w) * h;
+  float* marginal = rows + size_t(w) * h;
+  std::vector<double> rowSum(h);
+  double total = 0;
+  for (uint32_t y = 0; y < h; ++y) {
+    const float sinTheta = std::sin((y + 0.5f) / h * kPi);
+    double sum = 0;
+    for (uint32_t x = 0; x < w; ++x) {
+      const glm::vec3 c = radiance((x + 0.5f) / w, (y + 0.5f) / h);
+      // A small floor keeps every direction reachable (a black cell's light is still counted by BSDF rays).
+      const double weight = (std::max(0.0f, 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z) + 1e-4) * sinTheta;
+      sum += weight;
+      rows[size_t(y) * w + x] = float(sum);
+      prob[size_t(y) * w + x] = float(weight);
+    }
+    rowSum[y] = sum;
+    total += sum;
+  }
+  double running = 0;
+  for (uint32_t y = 0; y < h; ++y) {
+    for (uint32_t x = 0; x < w; ++x) {
+      rows[size_t(y) * w + x] = rowSum[y] > 0 ? float(rows[size_t(y) * w + x] / rowSum[y]) : float(x + 1) / w;
+      prob[size_t(y) * w + x] = float(prob[size_t(y) * w + x] / total);
+    }
+    rows[size_t(y) * w + w - 1] = 1.0f;
+    running += rowSum[y];
+    marginal[y] = float(running / total);
+  }
+  marginal[h - 1] = 1.0f;
+  return out;
 }
 
 } // namespace
@@ -94,6 +141,24 @@ void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& g
   // the shader to the lookup direction, so the map and its irradiance stay consistent.
   const float band[9] = {kPi, 2 * kPi / 3, 2 * kPi / 3, 2 * kPi / 3, kPi / 4, kPi / 4, kPi / 4, kPi / 4, kPi / 4};
   for (int k = 0; k < 9; ++k) out.irradianceSh[k] = sh[k] * band[k] * env.intensity;
+
+  std::vector<float> cdf = {0.0f};  // a buffer must not be empty
+  if (out.kind == gpu::kEnvironmentMap) {
+    const uint32_t w = uint32_t(env.width), h = uint32_t(env.height);
+    out.cdfWidth = std::min(w, kCdfMaxWidth);
+    out.cdfHeight = std::min(h, kCdfMaxHeight);
+    cdf = environmentCdf(out.cdfWidth, out.cdfHeight, [&](float u, float v) {
+      const size_t i = (size_t(std::min(uint32_t(v * h), h - 1)) * w + std::min(uint32_t(u * w), w - 1)) * 3;
+      return glm::vec3(env.rgb[i], env.rgb[i + 1], env.rgb[i + 2]);
+    });
+  } else if (out.kind == gpu::kEnvironmentSky) {
+    out.cdfWidth = kSkyCdfWidth;
+    out.cdfHeight = kSkyCdfHeight;
+    cdf = environmentCdf(out.cdfWidth, out.cdfHeight,
+                         [&](float u, float v) { return skyRadiance(env, equirectDirection(u, v)); });
+  }
+  gs.environmentCdf =
+      rhi::createBufferWithData(ctx, std::as_bytes(std::span(cdf)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "environment-cdf");
 }
 
 void uploadDfgTable(rhi::Context& ctx, GpuScene& gs) {

@@ -162,6 +162,7 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     gs.instances = tableBuffer(ctx, instanceRows, "instances");
   }
   gs.lights = tableBuffer(ctx, lightRows, "lights");
+  uploadEmissiveTriangles(ctx, scene, gs);
   gs.uploadMs = msSince(t0);
 
   auto t1 = Clock::now();

@@ -23,6 +23,9 @@ struct GpuEnvironment {
   uint32_t kind = 0;                 // gpu::kEnvironment*
   uint32_t slot = 0xFFFFFFFFu;       // bindless slot of the equirect map
   std::array<glm::vec3, 9> irradianceSh{};  // cosine-convolved SH9 of the radiance, × intensity
+  // Importance sampling (the path tracer): a piecewise-constant 2D distribution over cdfWidth ×
+  // cdfHeight equirect cells ∝ luminance × sinθ; 0 × 0 for a black environment.
+  uint32_t cdfWidth = 0, cdfHeight = 0;
 };
 
 struct GpuScene {
@@ -39,6 +42,10 @@ struct GpuScene {
   std::vector<rhi::Sampler> samplers;
   std::unique_ptr<rhi::BindlessTextures> bindless;
   rhi::Image environmentMap;
+  rhi::Buffer environmentCdf;      // float[]: see GpuEnvironment
+  rhi::Buffer emissiveTriangles;   // gpu::EmissiveTriangle[] (render/gpu_emissive.cpp)
+  uint32_t emissiveTriangleCount = 0;
+  float emissiveArea = 0.0f;
   GpuEnvironment environment;
   rhi::Image dfgTable;                // split-sum DFG (render/dfg.h), RG16F
   uint32_t dfgSlot = 0xFFFFFFFFu;     // its bindless slot
@@ -64,6 +71,8 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene);
 void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs);
 // Environment map and its irradiance (render/gpu_environment.cpp).
 void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs);
+// The path tracer's emissive-triangle list (render/gpu_emissive.cpp).
+void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs);
 // The split-sum DFG table of glossy reflections, into the bindless array (render/gpu_environment.cpp).
 void uploadDfgTable(rhi::Context& ctx, GpuScene& gs);
 // Uploads RGBA8 pixels to a sampled image with a full mip chain (render/gpu_materials.cpp).

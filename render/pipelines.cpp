@@ -8,7 +8,22 @@ constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
 constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kTlas = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
+
+// Hit groups by geometry kind (gpu::kHitGroupTriangles, gpu::kHitGroupSpheres): alpha-tested
+// triangles run any-hit; spheres run their intersection shader.
+const std::vector<rhi::HitGroup> kRadianceHitGroups = {{"primary.rchit", "alpha.rahit", ""},
+                                                       {"primary.rchit", "", "sphere.rint"}};
 } // namespace
+
+rhi::RayTracingPipeline createPathTracePipeline(rhi::Context& ctx, VkDescriptorSetLayout textures) {
+  rhi::RayTracingPipelineDesc d;
+  d.raygen = "pathtrace.rgen";
+  d.miss = {"primary.rmiss", "shadow.rmiss"};  // radiance rays miss 0, shadow rays miss 1
+  d.hitGroups = kRadianceHitGroups;
+  d.globalSet = textures;
+  d.bindings = {{0, kUniform}, {1, kTlas}, {2, kStorage}, {3, kStorage}, {4, kStorage}, {5, kStorage}};
+  return rhi::RayTracingPipeline(ctx, d);
+}
 
 Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   Pipelines p;
@@ -25,13 +40,10 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   g.fragment = "gbuffer_sphere.frag";
   p.gbufferSpheres = rhi::createGraphicsPipeline(ctx, g);
 
-  // Hit groups by geometry kind (gpu::kHitGroupTriangles, gpu::kHitGroupSpheres): alpha-tested
-  // triangles run any-hit; spheres run their intersection shader.
-
   rhi::RayTracingPipelineDesc primary;
   primary.raygen = "gbuffer.rgen";
   primary.miss = {"primary.rmiss"};
-  primary.hitGroups = {{"primary.rchit", "alpha.rahit", ""}, {"primary.rchit", "", "sphere.rint"}};
+  primary.hitGroups = kRadianceHitGroups;
   primary.globalSet = textures;
   primary.bindings = {{0, kUniform}, {1, kTlas},    {2, kStorage}, {3, kStorage}, {4, kStorage},
                       {5, kStorage}, {6, kStorage}, {7, kStorage}, {8, kStorage}};

@@ -19,6 +19,7 @@ inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
 inline constexpr VkFormat kVisibilityFormat = VK_FORMAT_R16_SFLOAT;
 inline constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kPathAccumulationFormat = VK_FORMAT_R32G32B32A32_SFLOAT;  // sums of many samples: fp32
 inline constexpr VkFormat kTaaHistoryFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // a resolved image: fp16 is enough
 
 struct Pipelines {
@@ -38,5 +39,8 @@ struct Pipelines {
   // textures: the layout of the bindless texture set (set 1 of every pipeline that shades).
   static Pipelines create(rhi::Context& ctx, VkDescriptorSetLayout textures);
 };
+
+// The path tracer's pipeline, created only when a render asks for --mode pathtrace.
+rhi::RayTracingPipeline createPathTracePipeline(rhi::Context& ctx, VkDescriptorSetLayout textures);
 
 } // namespace rayster::render

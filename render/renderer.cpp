@@ -17,6 +17,7 @@
 #include "render/jitter.h"
 #include "render/passes/denoise.h"
 #include "render/passes/passes.h"
+#include "render/path_tracer.h"
 #include "render/pipelines.h"
 #include "rhi/commands.h"
 #include "rhi/context.h"
@@ -35,6 +36,7 @@ const std::vector<std::string>& aovNames() {
     // Per shadowed light: layer i of the visibility arrays ("shadow-raw" is layer 0).
     for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-raw");
     for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-denoised");
+    n.push_back("variance");  // --mode pathtrace: the per-pixel variance of the accumulated mean
     return n;
   }();
   return names;
@@ -201,6 +203,13 @@ struct Renderer::Impl {
     fc.aoRadius = aoRadius(s);
     fc.effectFlags = (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u);
     fc.dfgSlot = gpu.dfgSlot;
+    fc.emissiveTriangles = gpu.emissiveTriangles.address();
+    fc.environmentCdf = gpu.environmentCdf.address();
+    fc.emissiveTriangleCount = gpu.emissiveTriangleCount;
+    fc.emissiveArea = gpu.emissiveArea;
+    fc.environmentCdfWidth = gpu.environment.cdfWidth;
+    fc.environmentCdfHeight = gpu.environment.cdfHeight;
+    fc.maxDepth = std::max(1u, s.maxDepth);
     std::memcpy(constants.mapped(), &fc, sizeof(fc));
     return fc.unjitteredClipFromWorld;
   }
@@ -280,16 +289,49 @@ struct Renderer::Impl {
     return cam;
   }
 
+  Result<const scene::Camera*> findCamera(const RenderSettings& s) const {
+    if (s.camera.empty()) return &scene.cameras.front();
+    auto it = std::find_if(scene.cameras.begin(), scene.cameras.end(),
+                           [&](const scene::Camera& c) { return c.name == s.camera; });
+    if (it == scene.cameras.end()) return makeError(ExitCode::BadArguments, "the scene has no camera named '{}'", s.camera);
+    return &*it;
+  }
+
+  RenderOutput::SceneStats sceneStats() const {
+    RenderOutput::SceneStats st{gpu.triangleCount, gpu.sphereCount, gpu.accelStats.builtBytes,
+                                gpu.accelStats.compactedBytes, gpu.accelStats.tlasBytes, gpu.uploadMs,
+                                gpu.accelBuildMs, 0, 0};
+    const rhi::MemoryStats mem = ctx.memory().stats();
+    st.deviceBytesUsed = mem.usedBytes;
+    st.deviceBytesReserved = mem.reservedBytes;
+    return st;
+  }
+
+  std::unique_ptr<PathTracer> pathTracer;  // created by the first path-traced render
+
+  // The reference (render/path_tracer.h): the scene's rest pose seen from the (static) camera.
+  Result<RenderOutput> renderPathTraced(const RenderSettings& s) {
+    auto cam = findCamera(s);
+    if (!cam) return cam.error();
+    if (s.cameraPath || (scene.animated() && s.animate))
+      log::info("--mode pathtrace renders the static camera and the rest pose");
+    if (!pathTracer) pathTracer = std::make_unique<PathTracer>(ctx, gpu.bindless->layout());
+    manyLights = false;
+    const PathTraceResources r{ctx, gpu, pipelines, constants, nearest, linear, transients, commands, timers};
+    auto out = pathTracer->render(s, r, [&](uint32_t f) {
+      frameIndex = f;
+      writeConstants(s, **cam, glm::vec2(0.0f), nullptr);
+    });
+    if (out) out->scene = sceneStats();
+    return out;
+  }
+
   Result<RenderOutput> render(const RenderSettings& s) {
     if (s.cameraPath && scene.cameraPath.empty())
       return makeError(ExitCode::BadArguments, "--camera-path: scene '{}' has no camera path", scene.name);
-    const scene::Camera* cam = &scene.cameras.front();
-    if (!s.camera.empty()) {
-      auto it = std::find_if(scene.cameras.begin(), scene.cameras.end(),
-                             [&](const scene::Camera& c) { return c.name == s.camera; });
-      if (it == scene.cameras.end()) return makeError(ExitCode::BadArguments, "the scene has no camera named '{}'", s.camera);
-      cam = &*it;
-    }
+    auto camera = findCamera(s);
+    if (!camera) return camera.error();
+    const scene::Camera* cam = *camera;
     RenderOutput out;
     frameIndex = 0;
     manyLights = gpu.lightCount > std::min(s.shadowLights, gpu::kMaxShadowLights);
@@ -428,6 +470,10 @@ struct Renderer::Impl {
         }
         for (const std::string& name : s.aovs) {
           auto it = stages.find(name);
+          if (name == "variance") {
+            log::info("AOV 'variance' skipped: only --mode pathtrace has it");
+            continue;
+          }
           if (it == stages.end()) {  // a light the scene does not have
             log::info("AOV '{}' skipped: the scene has {} shadowed light(s)", name, shadowLights());
             continue;
@@ -462,11 +508,7 @@ struct Renderer::Impl {
       if (s.progress) s.progress(f + 1, s.frames);
     }
 
-    out.scene = {gpu.triangleCount, gpu.sphereCount, gpu.accelStats.builtBytes, gpu.accelStats.compactedBytes,
-                 gpu.accelStats.tlasBytes, gpu.uploadMs, gpu.accelBuildMs, 0, 0};
-    const rhi::MemoryStats mem = ctx.memory().stats();
-    out.scene.deviceBytesUsed = mem.usedBytes;
-    out.scene.deviceBytesReserved = mem.reservedBytes;
+    out.scene = sceneStats();
     out.ldr = Image8::make(int(s.width), int(s.height));
     std::memcpy(out.ldr.rgba.data(), ldrReadback.mapped(), pixels * 4);
     out.hdr = ImageF::make(int(s.width), int(s.height));
@@ -479,15 +521,7 @@ struct Renderer::Impl {
         for (int c = 0; c < 4; ++c) img.rgba[i * 4 + c] = texel(data, format, i, c);
       out.aovs.emplace_back(name, std::move(img));
     }
-
-    for (const std::string& name : passOrder) {
-      std::vector<double> v = passTimes[name];
-      std::sort(v.begin(), v.end());
-      PassStats ps{name, v[v.size() / 2], v.front(), v[std::min(v.size() - 1, size_t(std::ceil(0.95 * v.size())) - 1)],
-                   uint32_t(v.size())};
-      out.frameMedianMs += ps.medianMs;
-      out.passes.push_back(ps);
-    }
+    summarisePasses(passOrder, passTimes, out);
     return out;
   }
 };
@@ -506,6 +540,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(rhi::Context& ctx, const scen
 }
 
 Result<RenderOutput> Renderer::render(const RenderSettings& settings) {
+  if (settings.mode == Mode::PathTrace) return impl_->renderPathTraced(settings);
   if (settings.mode != Mode::Hybrid)
     return makeError(ExitCode::BadArguments, "--mode {} is not implemented yet", modeName(settings.mode));
   return impl_->render(settings);

@@ -66,6 +66,9 @@ struct RenderSettings {
   float aoRadius = -1.0f;  // world units; <= 0: kAoRadiusFraction × the scene bounds' diagonal
   // One-bounce ray-traced indirect diffuse; unset: the scene's indirectByDefault.
   std::optional<bool> indirect;
+  // Path tracing (--mode pathtrace): path vertices after the camera ray (--max-depth); `frames` is
+  // the number of samples per pixel, one per frame.
+  uint32_t maxDepth = 8;
   // Called after each frame with (frames done, frames in all), e.g. to show progress.
   std::function<void(uint32_t, uint32_t)> progress;
 };
@@ -104,6 +107,7 @@ class Renderer {
  public:
   static Result<std::unique_ptr<Renderer>> create(rhi::Context& ctx, const scene::Scene& scene);
   ~Renderer();
+  // Mode::Hybrid or Mode::PathTrace (render/path_tracer.h); Mode::Raster is refused for now.
   Result<RenderOutput> render(const RenderSettings& settings);
 
  private:

@@ -53,17 +53,6 @@ float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
 
 #include "lib/shading.glsl"
 
-// Exact dielectric Fresnel reflectance for light arriving at cosine cosI from the side of index
-// etaI onto etaT; 1 under total internal reflection.
-float fresnelDielectric(float cosI, float etaI, float etaT) {
-  float sinT = etaI / etaT * sqrt(max(0.0, 1.0 - cosI * cosI));
-  if (sinT >= 1.0) return 1.0;
-  float cosT = sqrt(max(0.0, 1.0 - sinT * sinT));
-  float rs = (etaI * cosI - etaT * cosT) / (etaI * cosI + etaT * cosT);
-  float rp = (etaI * cosT - etaT * cosI) / (etaI * cosT + etaT * cosI);
-  return 0.5 * (rs * rs + rp * rp);
-}
-
 // One specular event at a surface. `n`, `ng` face the incoming ray; `entering`: the ray is outside
 // the object (for closed meshes, by the triangle's winding). Updates the ray and the throughput.
 void scatter(inout vec3 dir, inout vec3 origin, inout vec3 beta, vec3 p, vec3 n, vec3 ng, bool entering,
@@ -170,10 +159,7 @@ void main() {
     bool entering = dot(dir, sp.geometricNormal) < 0.0;
     bool thinHit = m.thickness <= 0.0;
     // Beer–Lambert: leaving a volume, the path inside it was payload.t long.
-    if (!entering && !thinHit && m.attenuationDistance < 1e30) {
-      vec3 sigma = -log(max(m.attenuationColor, vec3(1e-6))) / m.attenuationDistance;
-      beta *= exp(-sigma * payload.t);
-    }
+    if (!entering && !thinHit) beta *= volumeTransmittance(m, payload.t);
     GBufferValues gb = evaluateSurface(m, sp, origin);
     ShadingInput s;
     s.p = sp.position;

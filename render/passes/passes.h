@@ -11,6 +11,7 @@
 namespace rayster::rhi {
 class Buffer;
 class Sampler;
+class RayTracingPipeline;
 } // namespace rayster::rhi
 
 namespace rayster::render {
@@ -66,6 +67,16 @@ graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& i
 // Many lights: direct light from one importance-picked light per pixel, with its shadow ray
 // (RGBA16F radiance).
 graph::ImageHandle traceDirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
+
+// The path tracer (render/path_tracer.h): one sample per pixel folded into fp32 running means of
+// the radiance and its square (RGBA32F; moments .a = samples). `previous*` are read only after the
+// first frame.
+struct PathAccumulation {
+  graph::ImageHandle previousMean, previousMoments;
+  graph::ImageHandle mean, moments;
+};
+graph::ImageHandle tracePaths(graph::RenderGraph& graph, const FrameInputs& in, const rhi::RayTracingPipeline& pipe,
+                              const PathAccumulation& acc);
 
 // What the lighting pass combines with the G-buffer.
 struct LightingInputs {

@@ -52,6 +52,13 @@ bool alphaRejects(MaterialRecord m, vec2 uv0, vec2 uv1, float u) {
   return (m.flags & kMaterialAlphaMask) != 0u ? a < m.alphaCutoff : a <= u;
 }
 
+// Beer–Lambert (KHR_materials_volume): the share of light left after `distance` inside the volume.
+vec3 volumeTransmittance(MaterialRecord m, float distance) {
+  if (m.attenuationDistance >= 1e30) return vec3(1.0);
+  vec3 sigma = -log(max(m.attenuationColor, vec3(1e-6))) / m.attenuationDistance;
+  return exp(-sigma * distance);
+}
+
 // Both normals face the viewer: the geometric normal from the triangle, the shading normal flipped
 // with it, so back faces of double-sided surfaces shade like front faces.
 GBufferValues evaluateSurface(MaterialRecord m, SurfacePoint sp, vec3 cameraPos) {

@@ -143,6 +143,22 @@ struct LightRecord {
   uint pad1;
 };
 
+// One emissive triangle of the path tracer's light list (render/gpu_emissive.cpp), in world space at
+// upload. Picked with probability area / total area (`cdf`: inclusive running sum of that).
+struct EmissiveTriangle {
+  vec3 p0;
+  float cdf;
+  vec3 p1;
+  uint material;
+  vec3 p2;
+  float pad0;
+  vec2 uv0;  // TEXCOORD_0 at the corners: the emissive texture's lookup
+  vec2 uv1;
+  vec2 uv2;
+  float pad1;
+  float pad2;
+};
+
 struct FrameConstants {
   mat4 clipFromWorld;
   mat4 worldFromClip;
@@ -178,6 +194,15 @@ struct FrameConstants {
   float aoRadius;          // RT AO ray length (world units)
   uint effectFlags;        // kEffect* bits
   uint dfgSlot;            // bindless slot of the split-sum DFG table (render/dfg.h)
+  // Path tracer (shaders/pathtrace.rgen.glsl).
+  uint64_t emissiveTriangles;  // EmissiveTriangle[] (render/gpu_emissive.cpp)
+  uint64_t environmentCdf;     // float[]: cell probabilities, row CDFs, marginal CDF (render/gpu_environment.cpp)
+  uint emissiveTriangleCount;
+  float emissiveArea;          // Σ area of the emissive triangles
+  uint environmentCdfWidth;    // cells of the environment CDF (0: no environment sampling)
+  uint environmentCdfHeight;
+  uint maxDepth;               // path vertices after the camera (--max-depth)
+  uint pad2;
 };
 
 #ifdef __cplusplus
@@ -199,7 +224,9 @@ static_assert(offsetof(FrameConstants, unjitteredClipFromWorld) == 432);
 static_assert(offsetof(FrameConstants, prevClipFromWorld) == 496);
 static_assert(offsetof(FrameConstants, jitter) == 560);
 static_assert(offsetof(FrameConstants, mirrorRoughness) == 572);
-static_assert(sizeof(FrameConstants) == 592);
+static_assert(sizeof(EmissiveTriangle) == 80);
+static_assert(offsetof(FrameConstants, emissiveTriangles) == 592);
+static_assert(sizeof(FrameConstants) == 632);
 } // namespace rayster::gpu
 #endif
 

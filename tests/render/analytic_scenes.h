@@ -59,6 +59,28 @@ inline Mesh unitQuad() {
           {0, 1, 2, 0, 2, 3}};
 }
 
+// The unit sphere (radius 0.5, like the other unit meshes), `rings` × 2·`rings` quads with smooth
+// normals, wound outward.
+inline Mesh unitSphere(int rings) {
+  Mesh m;
+  const int segments = 2 * rings;
+  for (int r = 0; r <= rings; ++r)
+    for (int s = 0; s <= segments; ++s) {
+      const float theta = float(r) / rings * 3.14159265f, phi = float(s) / segments * 6.2831853f;
+      const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
+      for (int k = 0; k < 3; ++k) {
+        m.positions.push_back(0.5f * n[k]);
+        m.normals.push_back(n[k]);
+      }
+    }
+  for (int r = 0; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const uint32_t a = uint32_t(r * (segments + 1) + s), b = a + uint32_t(segments + 1);
+      m.indices.insert(m.indices.end(), {a, b, a + 1, a + 1, b, b + 1});
+    }
+  return m;
+}
+
 // The unit cube [-0.5, 0.5]³, closed, every face wound outward (the bounce loop tells entering
 // from leaving a volume by the winding).
 inline Mesh unitBox() {
@@ -98,9 +120,8 @@ inline void writeGltf(const std::filesystem::path& dir, const std::string& name,
   std::string extensions =
       fmt::format(R"("KHR_materials_emissive_strength": {{"emissiveStrength": {}}})", peak > 0 ? peak : 1.0f);
   if (mat.transmission > 0)
-    extensions += fmt::format(
-        R"(, "KHR_materials_transmission": {{"transmissionFactor": {}}}, "KHR_materials_ior": {{"ior": {}}})",
-        mat.transmission, mat.ior);
+    extensions += fmt::format(R"(, "KHR_materials_transmission": {{"transmissionFactor": {}}})", mat.transmission);
+  if (mat.transmission > 0 || mat.ior != 1.5f) extensions += fmt::format(R"(, "KHR_materials_ior": {{"ior": {}}})", mat.ior);
   if (mat.thickness > 0)
     extensions += fmt::format(R"(, "KHR_materials_volume": {{"thicknessFactor": {}}})", mat.thickness);
   std::string json = fmt::format(
@@ -206,8 +227,10 @@ inline Rendered renderHdr(const std::filesystem::path& dir, const std::string& n
   auto png = dir / (name + ".png");
   auto exr = dir / (name + ".exr");
   // No TAA: its sub-pixel jitter would move the pixel centres the closed forms are evaluated at.
-  std::string args = fmt::format("render {} --size {}x{} --frames {} --seed 7 --taa off --hdr {} -o {} {}", scene.string(), w, h,
-                                 frames, exr.string(), png.string(), extra);
+  // Seed 7 unless `extra` names one.
+  const std::string seed = extra.find("--seed") == std::string::npos ? "--seed 7" : "";
+  std::string args = fmt::format("render {} --size {}x{} --frames {} {} --taa off --hdr {} -o {} {}", scene.string(), w, h,
+                                 frames, seed, exr.string(), png.string(), extra);
   if (!aovs.empty()) args += " --aov " + aovs;
   RunResult r = runRayster(args);
   EXPECT_EQ(r.exitCode, 0) << r.output;

@@ -1,0 +1,105 @@
+#include "render/path_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/log.h"
+#include "graph/graph.h"
+#include "render/gpu_scene.h"
+#include "render/passes/passes.h"
+#include "render/pipelines.h"
+#include "rhi/commands.h"
+#include "rhi/context.h"
+
+namespace rayster::render {
+
+void summarisePasses(const std::vector<std::string>& order, std::map<std::string, std::vector<double>>& times,
+                     RenderOutput& out) {
+  for (const std::string& name : order) {
+    std::vector<double>& v = times[name];
+    std::sort(v.begin(), v.end());
+    PassStats ps{name, v[v.size() / 2], v.front(), v[std::min(v.size() - 1, size_t(std::ceil(0.95 * v.size())) - 1)],
+                 uint32_t(v.size())};
+    out.frameMedianMs += ps.medianMs;
+    out.passes.push_back(ps);
+  }
+}
+
+PathTracer::PathTracer(rhi::Context& ctx, VkDescriptorSetLayout textures)
+    : pipeline_(createPathTracePipeline(ctx, textures)) {}
+
+Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTraceResources& r,
+                                        const std::function<void(uint32_t)>& writeConstants) {
+  if (s.frames == 0) return makeError(ExitCode::BadArguments, "--mode pathtrace needs at least one sample");
+  const size_t skipped = size_t(std::count_if(s.aovs.begin(), s.aovs.end(), [](const std::string& n) { return n != "variance"; }));
+  if (skipped > 0) log::info("{} AOV(s) skipped: --mode pathtrace writes only 'variance'", skipped);
+  const bool variance = std::find(s.aovs.begin(), s.aovs.end(), "variance") != s.aovs.end();
+  const rhi::ImageDesc desc{kPathAccumulationFormat, s.width, s.height, 1,
+                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT};
+  mean_.ensure(r.ctx, desc, "pt-mean");
+  moments_.ensure(r.ctx, desc, "pt-moments");
+
+  const size_t pixels = size_t(s.width) * s.height;
+  rhi::Buffer ldrReadback(r.ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
+  rhi::Buffer meanReadback(r.ctx, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "pt-readback");
+  rhi::Buffer momentsReadback(r.ctx, variance ? pixels * 16 : 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              rhi::MemoryUsage::Readback, "pt-moments-readback");
+  graph::ResourceState ldrState, meanState, momentsState;
+  std::map<std::string, std::vector<double>> passTimes;
+  std::vector<std::string> passOrder;
+
+  for (uint32_t f = 0; f < s.frames; ++f) {
+    writeConstants(f);
+    graph::RenderGraph graph(&r.ctx, &r.transients);
+    FrameInputs in{r.pipelines, r.scene, r.constants, r.nearest, r.linear, {s.width, s.height}, r.scene.bindless->set()};
+    const PathAccumulation acc{mean_.previous(graph, "pt-mean", f), moments_.previous(graph, "pt-moments", f),
+                               mean_.next(graph, "pt-mean", f), moments_.next(graph, "pt-moments", f)};
+    const graph::ImageHandle mean = tracePaths(graph, in, pipeline_, acc);
+    if (f + 1 == s.frames) {
+      const graph::ImageHandle ldr = tonemap(graph, in, mean, {std::exp2(s.exposureEv), s.tonemap, s.seed});
+      readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));
+      readback(graph, mean, graph.importBuffer("pt-readback", &meanReadback, &meanState));
+      if (variance)
+        readback(graph, acc.moments,
+                 graph.importBuffer("pt-moments-readback", &momentsReadback, &momentsState));
+    }
+    VkCommandBuffer cmd = r.commands.begin();
+    r.timers.reset(cmd);
+    graph.execute(cmd, &r.timers);
+    r.ctx.wait(r.commands.submit());
+    for (auto& t : r.timers.read()) {
+      if (t.name == "readback" || t.name == "host-visible") continue;
+      if (!passTimes.count(t.name)) passOrder.push_back(t.name);
+      passTimes[t.name].push_back(t.ms);
+    }
+    r.ctx.collectGarbage();
+    if (s.progress) s.progress(f + 1, s.frames);
+  }
+
+  RenderOutput out;
+  out.modeUsed = Mode::PathTrace;
+  out.primaryUsed = Primary::Traced;
+  out.ldr = Image8::make(int(s.width), int(s.height));
+  std::memcpy(out.ldr.rgba.data(), ldrReadback.mapped(), pixels * 4);
+  out.hdr = ImageF::make(int(s.width), int(s.height));
+  std::memcpy(out.hdr.rgba.data(), meanReadback.mapped(), pixels * 16);
+  if (variance) {
+    // Variance of the mean: (E[x²] − E[x]²) · n/(n − 1) / n per channel; 0 with one sample.
+    ImageF v = ImageF::make(int(s.width), int(s.height));
+    const float* sq = static_cast<const float*>(momentsReadback.mapped());
+    const float n = float(s.frames);
+    for (size_t i = 0; i < pixels; ++i) {
+      for (int c = 0; c < 3; ++c) {
+        const float m = out.hdr.rgba[i * 4 + c];
+        v.rgba[i * 4 + c] = n > 1.0f ? std::max(0.0f, sq[i * 4 + c] - m * m) / (n - 1.0f) : 0.0f;
+      }
+      v.rgba[i * 4 + 3] = 1.0f;
+    }
+    out.aovs.emplace_back("variance", std::move(v));
+  }
+  summarisePasses(passOrder, passTimes, out);
+  return out;
+}
+
+} // namespace rayster::render

@@ -1,0 +1,62 @@
+#pragma once
+// The reference renderer (--mode pathtrace, DESIGN.md §3): progressive path tracing of the same
+// GPU scene, materials, lights, environment and camera as the hybrid frame, one sample per pixel
+// per frame, accumulated in fp32. Deterministic: the seed and the sample count fix the image.
+// The image is the accumulated mean (no TAA); the "variance" AOV is the per-pixel variance of
+// that mean (sample variance / samples).
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "render/history.h"
+#include "render/renderer.h"
+#include "rhi/rt_pipeline.h"
+
+namespace rayster::rhi {
+class Buffer;
+class CommandList;
+class Sampler;
+class TimestampPool;
+} // namespace rayster::rhi
+
+namespace rayster::graph {
+class TransientPool;
+}
+
+namespace rayster::render {
+
+struct GpuScene;
+struct Pipelines;
+
+// What the path tracer borrows from the renderer for a render.
+struct PathTraceResources {
+  rhi::Context& ctx;
+  const GpuScene& scene;
+  const Pipelines& pipelines;
+  const rhi::Buffer& constants;
+  const rhi::Sampler& nearest;
+  const rhi::Sampler& linear;
+  graph::TransientPool& transients;
+  rhi::CommandList& commands;
+  rhi::TimestampPool& timers;
+};
+
+class PathTracer {
+ public:
+  PathTracer(rhi::Context& ctx, VkDescriptorSetLayout textures);
+  // `writeConstants(f)` fills the FrameConstants of sample f (frameIndex f, no jitter).
+  Result<RenderOutput> render(const RenderSettings& s, const PathTraceResources& r,
+                              const std::function<void(uint32_t)>& writeConstants);
+
+ private:
+  rhi::RayTracingPipeline pipeline_;
+  History mean_, moments_;
+};
+
+// Per-pass GPU time statistics (median, min, p95) from each frame's timings, in first-seen order;
+// adds each median to out.frameMedianMs.
+void summarisePasses(const std::vector<std::string>& order, std::map<std::string, std::vector<double>>& times,
+                     RenderOutput& out);
+
+} // namespace rayster::render
