@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <deque>
@@ -88,6 +89,23 @@ bool isCameraCut(const scene::Camera& before, const scene::Camera& now) {
 }
 
 } // namespace
+
+RayCount launchedRays(const std::string& pass, uint32_t width, uint32_t height, uint32_t shadowLayers,
+                      uint32_t lightsPerHit, uint32_t maxDepth) {
+  const uint64_t pixels = uint64_t(width) * height;
+  // traceRayEXT calls per invocation, from the shaders: one primary ray (gbuffer.rgen); one shadow
+  // ray per layer (shadows.rgen, one launch layer per shadowed light); one occlusion ray (ao.rgen);
+  // one shadow ray to the importance-selected light (direct.rgen); a bounce ray plus a shadow ray at
+  // its hit (indirect.rgen); and per traced specular bounce one ray plus a shadow ray per light shaded
+  // at the hit (specular.rgen). Invocations on the background, non-specular pixels or lights behind
+  // the surface return before tracing, and paths end early, so all but the primary rays are bounds.
+  if (pass == "gbuffer-traced") return {pixels, true};
+  if (pass == "rt-shadows") return {pixels * shadowLayers, false};
+  if (pass == "rt-ao" || pass == "rt-direct") return {pixels, false};
+  if (pass == "rt-indirect") return {pixels * 2, false};
+  if (pass == "rt-specular") return {pixels * uint64_t(maxDepth) * (1u + lightsPerHit), false};
+  return {};
+}
 
 const char* modeName(Mode m) {
   switch (m) {
@@ -201,6 +219,7 @@ struct Renderer::Impl {
     fc.aoRadius = aoRadius(s);
     fc.effectFlags = (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u);
     fc.dfgSlot = gpu.dfgSlot;
+    fc.maxSpecularBounces = std::clamp(s.maxDepth, 1u, gpu::kMaxSpecularBounces);
     std::memcpy(constants.mapped(), &fc, sizeof(fc));
     return fc.unjitteredClipFromWorld;
   }
@@ -336,8 +355,13 @@ struct Renderer::Impl {
         return makeError(ExitCode::BadArguments, "unknown AOV '{}'", name);
     std::map<std::string, std::vector<double>> passTimes;
     std::vector<std::string> passOrder;
+    using Clock = std::chrono::steady_clock;
+    const auto msSince = [](Clock::time_point t0) {
+      return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    };
 
     for (uint32_t f = 0; f < s.frames; ++f) {
+      const Clock::time_point frameStart = Clock::now();
       frameIndex = f;
       const scene::Camera camera = s.cameraPath ? cameraOnPath(*cam, s, f) : *cam;
       // A cut (the first frame of a run, a jump of the camera, or a listed frame) restarts every history.
@@ -444,12 +468,23 @@ struct Renderer::Impl {
       VkCommandBuffer cmd = commands.begin();
       timers.reset(cmd);
       graph.execute(cmd, &timers);
-      ctx.wait(commands.submit());
+      const uint64_t submitted = commands.submit();
+      const double cpuMs = msSince(frameStart);
+      ctx.wait(submitted);
+      const double wallMs = msSince(frameStart);
       for (History* h : {&surfaceHistory, &shadowHistory, &aoHistory}) h->valid = true;
+      const bool measured = f >= s.warmupFrames || s.warmupFrames >= s.frames;  // never an empty sample
+      double gpuMs = 0;
       for (auto& t : timers.read()) {
-        if (t.name == "readback" || t.name == "host-visible") continue;
+        if (t.name == "readback" || t.name == "host-visible" || !measured) continue;
         if (!passTimes.count(t.name)) passOrder.push_back(t.name);
         passTimes[t.name].push_back(t.ms);
+        gpuMs += t.ms;
+      }
+      if (measured) {
+        out.frameGpuMs.push_back(gpuMs);
+        out.frameCpuMs.push_back(cpuMs);
+        out.frameWallMs.push_back(wallMs);
       }
       ctx.collectGarbage();
       if (s.taa) {
@@ -464,6 +499,12 @@ struct Renderer::Impl {
     const rhi::MemoryStats mem = ctx.memory().stats();
     out.scene.deviceBytesUsed = mem.usedBytes;
     out.scene.deviceBytesReserved = mem.reservedBytes;
+    out.scene.imageBytes = mem.bytes(rhi::MemoryCategory::Image);
+    out.scene.bufferBytes = mem.bytes(rhi::MemoryCategory::Buffer);
+    out.scene.accelBytes = mem.bytes(rhi::MemoryCategory::Accel);
+    out.scene.hostBytes = mem.bytes(rhi::MemoryCategory::Host);
+    out.scene.lights = gpu.lightCount;
+    out.shadowLayers = shadowLights();
     out.ldr = Image8::make(int(s.width), int(s.height));
     std::memcpy(out.ldr.rgba.data(), ldrReadback.mapped(), pixels * 4);
     out.hdr = ImageF::make(int(s.width), int(s.height));
@@ -477,11 +518,17 @@ struct Renderer::Impl {
       out.aovs.emplace_back(name, std::move(img));
     }
 
+    const uint32_t lightsPerHit = manyLights ? 1u : gpu.lightCount;
+    const uint32_t bounces = std::clamp(s.maxDepth, 1u, gpu::kMaxSpecularBounces);
     for (const std::string& name : passOrder) {
       std::vector<double> v = passTimes[name];
       std::sort(v.begin(), v.end());
       PassStats ps{name, v[v.size() / 2], v.front(), v[std::min(v.size() - 1, size_t(std::ceil(0.95 * v.size())) - 1)],
                    uint32_t(v.size())};
+      ps.samplesMs = passTimes[name];
+      const RayCount rc = launchedRays(name, s.width, s.height, shadowLights(), lightsPerHit, bounces);
+      ps.rays = rc.rays;
+      ps.raysExact = rc.exact;
       out.frameMedianMs += ps.medianMs;
       out.passes.push_back(ps);
     }

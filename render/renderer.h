@@ -31,6 +31,12 @@ const char* modeName(Mode m);
 struct RenderSettings {
   uint32_t width = 1280, height = 720;
   uint32_t frames = 16;  // frames rendered; a static camera's denoisers accumulate them all
+  // The first warmupFrames of `frames` are rendered but left out of the timing statistics (pipeline
+  // and cache warm-up, clocks ramping up); benchmarks set it, images are unaffected.
+  uint32_t warmupFrames = 0;
+  // Specular rays a reflection/refraction path traces at most (1..gpu::kMaxSpecularBounces); the
+  // default is the bounce loop's historical bound.
+  uint32_t maxDepth = 7;
   uint32_t seed = 0;
   Mode mode = Mode::Hybrid;
   Primary primary = Primary::Auto;
@@ -78,7 +84,22 @@ struct PassStats {
   std::string name;
   double medianMs = 0, minMs = 0, p95Ms = 0;
   uint32_t samples = 0;
+  std::vector<double> samplesMs;  // per measured frame, in frame order (for significance tests)
+  // Rays the pass launches per frame: launch size × traceRayEXT calls per invocation, an upper bound
+  // where an invocation may return early (background, back-facing light) or a path ends early;
+  // raysExact says when the figure is exact. 0 for passes that trace nothing. See launchedRays().
+  uint64_t rays = 0;
+  bool raysExact = false;
 };
+
+// Rays per frame of the pass named `pass` at this size: launch size × traces per invocation.
+// Exact only for the traced G-buffer (one primary ray per pixel); the others are upper bounds.
+struct RayCount {
+  uint64_t rays = 0;
+  bool exact = false;
+};
+RayCount launchedRays(const std::string& pass, uint32_t width, uint32_t height, uint32_t shadowLayers,
+                      uint32_t lightsPerHit, uint32_t maxDepth);
 
 // Names accepted by RenderSettings::aovs, in the order `--aov all` writes them.
 const std::vector<std::string>& aovNames();
@@ -92,11 +113,18 @@ struct RenderOutput {
   double rasterGBufferMs = -1, tracedGBufferMs = -1;  // measured by --primary auto, else -1
   std::vector<PassStats> passes;                      // GPU time per pass over all frames
   double frameMedianMs = 0;                           // sum of the passes' medians
+  // Per measured frame (after warm-up): GPU ms (sum of the passes), CPU ms recording and submitting
+  // the frame, and wall ms including the wait for the GPU.
+  std::vector<double> frameGpuMs, frameCpuMs, frameWallMs;
+  uint32_t shadowLayers = 0;  // lights with their own shadow layer (0: many-light mode)
   struct SceneStats {
     uint64_t triangles = 0, spheres = 0;
     uint64_t blasBytes = 0, blasCompactedBytes = 0, tlasBytes = 0;
     double uploadMs = 0, accelBuildMs = 0;  // CPU wall time, including waits for the GPU
     uint64_t deviceBytesUsed = 0, deviceBytesReserved = 0;
+    // deviceBytesUsed by rhi::MemoryCategory: images, device buffers, acceleration structures, host-visible.
+    uint64_t imageBytes = 0, bufferBytes = 0, accelBytes = 0, hostBytes = 0;
+    uint32_t lights = 0;
   } scene;
 };
 

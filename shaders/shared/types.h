@@ -27,6 +27,10 @@ RAYSTER_CONST uint kLightSpot = 1u;
 RAYSTER_CONST uint kLightDirectional = 2u;
 
 RAYSTER_CONST uint kMaxShadowLights = 8u;  // one visibility layer each
+// Specular rays a reflection/refraction path may trace after the G-buffer surface (the bounce loop
+// of specular.rgen); RenderSettings::maxDepth picks 1..this, default kDefaultSpecularBounces.
+RAYSTER_CONST uint kMaxSpecularBounces = 8u;
+RAYSTER_CONST uint kDefaultSpecularBounces = 7u;  // the loop's historical bound (8 path vertices)
 RAYSTER_CONST uint kDfgSize = 32u;         // split-sum DFG table, kDfgSize² texels (render/dfg.h)
 RAYSTER_CONST uint kBackgroundId = 0xFFFFFFFFu;
 RAYSTER_CONST uint kNoTexture = 0xFFFFFFFFu;
@@ -178,6 +182,8 @@ struct FrameConstants {
   float aoRadius;          // RT AO ray length (world units)
   uint effectFlags;        // kEffect* bits
   uint dfgSlot;            // bindless slot of the split-sum DFG table (render/dfg.h)
+  uint maxSpecularBounces; // specular.rgen traces at most this many rays per path (1..kMaxSpecularBounces)
+  uint framePad0;
 };
 
 #ifdef __cplusplus
@@ -199,7 +205,8 @@ static_assert(offsetof(FrameConstants, unjitteredClipFromWorld) == 432);
 static_assert(offsetof(FrameConstants, prevClipFromWorld) == 496);
 static_assert(offsetof(FrameConstants, jitter) == 560);
 static_assert(offsetof(FrameConstants, mirrorRoughness) == 572);
-static_assert(sizeof(FrameConstants) == 592);
+static_assert(offsetof(FrameConstants, maxSpecularBounces) == 592);
+static_assert(sizeof(FrameConstants) == 600);
 } // namespace rayster::gpu
 #endif
 
