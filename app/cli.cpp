@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/bench_command.h"
 #include "app/commands.h"
 #include "app/render_command.h"
 #include "core/error.h"
@@ -98,6 +99,9 @@ int run(int argc, char** argv) {
                      "One-bounce ray-traced indirect diffuse: on or off (default: on for builtin:whitted and "
                      "builtin:cornell, off otherwise)")
       ->check(CLI::IsMember({"on", "off"}));
+  render->add_option("--max-depth", ro.settings.maxDepth,
+                     "Specular rays a reflection/refraction path traces at most (1-8, default 7)")
+      ->check(CLI::Range(1u, 8u));
   render->add_flag("--timings", ro.printTimings, "Print per-pass GPU times");
   render->add_option("--aov", ro.aovs,
                      "Also write intermediates as <stem>.<name>.png and .exr: all, or a comma-separated list of "
@@ -105,6 +109,36 @@ int run(int argc, char** argv) {
                      "reflection-denoised, ao-raw, ao-denoised, indirect-raw, indirect-denoised, and per "
                      "shadowed light N (0-7) shadowN-raw, shadowN-denoised");
   render->add_option("--json", ro.jsonOutput, "Write per-pass GPU times and settings as JSON to this file");
+
+  BenchOptions bo;
+  CLI::App* bench = cli.add_subcommand(
+      "bench", "Time scenes x sizes x modes (one process per configuration): per-pass GPU ms, rays, memory; "
+               "writes JSON, CSV and an SVG plot. --compare A.json B.json reports significant changes");
+  bench->add_option("scenes", bo.axes.scenes, "Scenes (as for render); default builtin:whitted");
+  bench->add_option("--size,--sizes", bo.axes.sizes, "Image sizes WxH, comma-separated (default 1920x1080)")
+      ->delimiter(',');
+  bench->add_option("--mode,--modes", bo.axes.modes, "Modes, comma-separated: hybrid, pathtrace, raster")->delimiter(',');
+  bench->add_option("--primary", bo.axes.primaries, "G-buffer producers, comma-separated: raster, rt, auto")
+      ->delimiter(',');
+  bench->add_option("--max-depth", bo.axes.maxDepths, "Specular bounce depths, comma-separated (1-8, default 7)")
+      ->delimiter(',');
+  bench->add_option("--shadow-lights", bo.axes.shadowLights, "As for render (0-8, default 8)");
+  bench->add_option("--warmup", bo.axes.warmup, "Frames rendered before measuring (default 16)");
+  bench->add_option("--frames", bo.axes.frames, "Frames measured after the warm-up (default 64)")
+      ->check(CLI::Range(1u, 100000u));
+  bench->add_option("--seed", bo.axes.seed, "Random seed (default 1)");
+  bench->add_option("--plan", bo.plan, "A JSON plan of sweeps (bench/plans/*.json) instead of the axes above");
+  bench->add_option("--json", bo.json, "Results (default bench-out/bench.json); CSV and SVG beside it");
+  bench->add_option("--csv", bo.csv, "CSV output (default: the --json path with .csv)");
+  bench->add_option("--svg", bo.svg, "SVG plot (default: the --json path with .svg)");
+  bench->add_option("--compare", bo.compare, "Compare two result files instead of running: A.json B.json")
+      ->expected(2);
+  bench->add_option("--min-change", bo.minChange,
+                    "--compare reports changes of the median larger than this fraction (default 0.05)");
+  bench->add_flag("--fail-on-change", bo.failOnChange, "--compare exits 9 when it reports a change");
+  bench->add_option("--child", bo.child, "(internal) run one configuration, given as JSON")->group("");
+  bench->add_option("--child-out", bo.childOut, "(internal) where the child writes its JSON")->group("");
+  bench->fallthrough();
 
   CLI::App* info = cli.add_subcommand("info", "List Vulkan devices and their ray-tracing capabilities");
 
@@ -135,6 +169,12 @@ int run(int argc, char** argv) {
   setenv("XDG_RUNTIME_DIR", "/tmp", /*overwrite=*/0);
 
   if (info->parsed()) return infoCommand();
+  if (bench->parsed()) {
+    bo.validation = validation;
+    bo.device = device;
+    bo.debugLabels = !noLabels;
+    return benchCommand(bo);
+  }
   if (compareCmd->parsed()) return compareCommand(co);
   if (render->parsed()) {
     if (!parseSize(size, ro.settings.width, ro.settings.height)) {
