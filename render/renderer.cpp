@@ -526,7 +526,8 @@ struct Renderer::Impl {
       PassStats ps{name, v[v.size() / 2], v.front(), v[std::min(v.size() - 1, size_t(std::ceil(0.95 * v.size())) - 1)],
                    uint32_t(v.size())};
       ps.samplesMs = passTimes[name];
-      const RayCount rc = launchedRays(name, s.width, s.height, shadowLights(), lightsPerHit, bounces);
+      RayCount rc = launchedRays(name, s.width, s.height, shadowLights(), lightsPerHit, bounces);
+      if ((name == "rt-ao" && !s.ao) || (name == "rt-indirect" && !indirectOn(s))) rc = {};  // the shader returns at once
       ps.rays = rc.rays;
       ps.raysExact = rc.exact;
       out.frameMedianMs += ps.medianMs;
