@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "app/bench_stats.h"
+
 namespace rayster::app {
 
 namespace {
@@ -60,7 +62,7 @@ std::string axisValue(const nlohmann::json& c) {
 
 std::string benchCsv(const nlohmann::json& results) {
   std::string out = "id,sweep,axis,x,scene,width,height,mode,primary,max_depth,pass,median_ms,p95_ms,min_ms,rays,grays_per_s\n";
-  for (const auto& c : results.value("configs", nlohmann::json::array())) {
+  for (const auto& c : configsOf(results)) {
     if (!c.value("ok", false)) continue;
     const std::string head = fmt::format(
         "{},{},{},{},{},{},{},{},{},{}", csvField(c.value("id", "")), csvField(c.value("sweep", "")),
@@ -82,7 +84,7 @@ std::string benchSvg(const nlohmann::json& results) {
   std::vector<std::string> sweepOrder;
   std::map<std::string, std::vector<const nlohmann::json*>> sweeps;
   std::vector<std::string> passNames;
-  for (const auto& c : results.value("configs", nlohmann::json::array())) {
+  for (const auto& c : configsOf(results)) {
     if (!c.value("ok", false)) continue;
     const std::string s = c.value("sweep", "");
     if (!sweeps.count(s)) sweepOrder.push_back(s);

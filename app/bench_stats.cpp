@@ -17,6 +17,11 @@ double quantile(const std::vector<double>& sorted, double q) {
 }
 } // namespace
 
+const nlohmann::json& configsOf(const nlohmann::json& results) {
+  static const nlohmann::json kEmpty = nlohmann::json::array();
+  return results.is_object() && results.contains("configs") && results["configs"].is_array() ? results["configs"] : kEmpty;
+}
+
 Summary summarize(std::vector<double> v) {
   Summary s;
   if (v.empty()) return s;
@@ -89,9 +94,9 @@ std::map<std::string, std::vector<double>> passSamples(const nlohmann::json& con
 std::vector<PassChange> compareResults(const nlohmann::json& a, const nlohmann::json& b, double minChange) {
   std::vector<PassChange> changes;
   std::map<std::string, const nlohmann::json*> bConfigs;
-  for (const auto& c : b.value("configs", nlohmann::json::array()))
+  for (const auto& c : configsOf(b))
     if (c.value("ok", false)) bConfigs[c.value("id", "")] = &c;
-  for (const auto& ca : a.value("configs", nlohmann::json::array())) {
+  for (const auto& ca : configsOf(a)) {
     if (!ca.value("ok", false)) continue;
     auto it = bConfigs.find(ca.value("id", ""));
     if (it == bConfigs.end()) continue;

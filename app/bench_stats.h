@@ -11,6 +11,10 @@ namespace rayster::app {
 struct Summary {
   double median = 0, p5 = 0, p95 = 0, min = 0, max = 0, mean = 0;
 };
+// The "configs" array of a result file by reference (an empty one when missing), so pointers into
+// it stay valid.
+const nlohmann::json& configsOf(const nlohmann::json& results);
+
 Summary summarize(std::vector<double> samples);  // all zero for an empty sample
 nlohmann::json summaryJson(const Summary& s);
 

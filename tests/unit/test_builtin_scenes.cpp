@@ -225,11 +225,11 @@ TEST(BuiltinMeshAsset, EmbeddedMeshesParse) {
 
 TEST(BuiltinScenes, LightsSceneHasTheRequestedLights) {
   for (uint32_t n : {1u, 8u, 256u}) {
-    auto scene = makeBuiltinScene("builtin:lights:" + std::to_string(n));
+    auto scene = rayster::scene::makeBuiltinScene("builtin:lights:" + std::to_string(n));
     ASSERT_TRUE(scene.ok());
     EXPECT_EQ(scene->lights.size(), n);
     EXPECT_FALSE(scene->cameras.empty());
   }
-  EXPECT_FALSE(makeBuiltinScene("lights:0").ok());
-  EXPECT_FALSE(makeBuiltinScene("lights:x").ok());
+  EXPECT_FALSE(rayster::scene::makeBuiltinScene("lights:0").ok());
+  EXPECT_FALSE(rayster::scene::makeBuiltinScene("lights:x").ok());
 }
