@@ -88,8 +88,15 @@ json configResult(const rhi::Context& ctx, const BenchConfig& c, const render::R
     j["auto"] = {{"raster_gbuffer_ms", out.rasterGBufferMs}, {"traced_gbuffer_ms", out.tracedGBufferMs}};
   uint64_t rays = 0;
   for (const auto& p : out.passes) {
-    j["passes"].push_back(passJson(p));
-    rays += p.rays;
+    json pj = passJson(p);
+    // The raw-rate twin traced the same rays with trivial shaders: the pass reaches raw/pass of its rate.
+    for (const auto& r : out.passes)
+      if (r.name == "raw-" + p.name && p.medianMs > 0) {
+        pj["raw_ms"] = r.medianMs;
+        pj["raw_fraction"] = r.medianMs / p.medianMs;
+      }
+    j["passes"].push_back(pj);
+    if (p.name.rfind("raw-", 0) != 0) rays += p.rays;
   }
   const Summary gpu = summarize(out.frameGpuMs);
   j["frame"] = {{"gpu_ms", summaryJson(gpu)},
@@ -129,6 +136,7 @@ Result<json> runConfig(const BenchOptions& o, const BenchConfig& c) {
     s.primary = c.primary == "raster" ? render::Primary::Raster : c.primary == "rt" ? render::Primary::Traced : render::Primary::Auto;
     s.maxDepth = c.maxDepth;
     s.shadowLights = c.shadowLights;
+    s.rawRays = c.rawRays;
     auto out = (*renderer)->render(s);
     if (!out) return out.error();
     result = configResult(**ctx, c, *out);
@@ -184,9 +192,11 @@ std::string isoDate() {
 std::string withExtension(const std::string& path, const char* ext) { return fs::path(path).replace_extension(ext).string(); }
 
 void printSummary(const json& c) {
+  std::fflush(stderr);
   std::printf("%-48s frame %8.3f ms (p95 %.3f), CPU %.3f ms, %.2f G rays/s\n", c.value("id", "").c_str(),
               c["frame"]["gpu_ms"].value("median", 0.0), c["frame"]["gpu_ms"].value("p95", 0.0),
               c["frame"]["cpu_ms"].value("median", 0.0), c["frame"].value("grays_per_s", 0.0));
+  std::fflush(stdout);
 }
 
 int parentCommand(const BenchOptions& o) {

@@ -28,7 +28,7 @@ nlohmann::json BenchConfig::toJson() const {
   return {{"sweep", sweep},   {"axis", axis},       {"scene", scene},          {"width", width},
           {"height", height}, {"mode", mode},       {"primary", primary},      {"max_depth", maxDepth},
           {"shadow_lights", shadowLights},          {"warmup", warmup},        {"frames", frames},
-          {"seed", seed}};
+          {"seed", seed},   {"raw_rays", rawRays}};
 }
 
 Result<BenchConfig> BenchConfig::fromJson(const nlohmann::json& j) {
@@ -46,6 +46,7 @@ Result<BenchConfig> BenchConfig::fromJson(const nlohmann::json& j) {
     c.warmup = j.at("warmup").get<uint32_t>();
     c.frames = j.at("frames").get<uint32_t>();
     c.seed = j.at("seed").get<uint32_t>();
+    c.rawRays = j.value("raw_rays", false);
     return c;
   } catch (const std::exception& e) {
     return makeError(ExitCode::BadArguments, "bench configuration: {}", e.what());
@@ -95,6 +96,7 @@ void appendSweep(BenchPlan& plan, const std::string& name, const BenchAxes& a) {
             c.warmup = a.warmup;
             c.frames = a.frames;
             c.seed = a.seed;
+            c.rawRays = a.rawRays;
             plan.configs.push_back(c);
           }
 }
@@ -130,6 +132,7 @@ Result<BenchPlan> loadPlan(const std::string& path) {
     defaults.frames = j.value("frames", defaults.frames);
     defaults.seed = j.value("seed", defaults.seed);
     defaults.shadowLights = j.value("shadow_lights", defaults.shadowLights);
+    defaults.rawRays = j.value("raw_rays", defaults.rawRays);
     readList(j, "sizes", defaults.sizes);
     readList(j, "primaries", defaults.primaries);
     if (!j.contains("sweeps") || !j["sweeps"].is_array() || j["sweeps"].empty())
@@ -144,6 +147,7 @@ Result<BenchPlan> loadPlan(const std::string& path) {
       a.shadowLights = s.value("shadow_lights", a.shadowLights);
       a.warmup = s.value("warmup", a.warmup);
       a.frames = s.value("frames", a.frames);
+      a.rawRays = s.value("raw_rays", a.rawRays);
       if (auto st = checkAxes(a); !st) return makeError(ExitCode::BadInput, "plan '{}': {}", path, st.error().message);
       const size_t before = plan.configs.size();
       appendSweep(plan, s.value("name", fmt::format("sweep{}", before)), a);

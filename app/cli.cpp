@@ -127,6 +127,9 @@ int run(int argc, char** argv) {
   bench->add_option("--frames", bo.axes.frames, "Frames measured after the warm-up (default 64)")
       ->check(CLI::Range(1u, 100000u));
   bench->add_option("--seed", bo.axes.seed, "Random seed (default 1)");
+  bench->add_flag("--raw-rays", bo.axes.rawRays,
+                  "Also trace the primary and shadow rays with trivial shaders and report each pass's share "
+                  "of that raw ray rate (raw_fraction)");
   bench->add_option("--plan", bo.plan, "A JSON plan of sweeps (bench/plans/*.json) instead of the axes above");
   bench->add_option("--json", bo.json, "Results (default bench-out/bench.json); CSV and SVG beside it");
   bench->add_option("--csv", bo.csv, "CSV output (default: the --json path with .csv)");

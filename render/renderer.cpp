@@ -103,8 +103,8 @@ RayCount launchedRays(const std::string& pass, uint32_t width, uint32_t height, 
   // its hit (indirect.rgen); and per traced specular bounce one ray plus a shadow ray per light shaded
   // at the hit (specular.rgen). Invocations on the background, non-specular pixels or lights behind
   // the surface return before tracing, and paths end early, so all but the primary rays are bounds.
-  if (pass == "gbuffer-traced") return {pixels, true};
-  if (pass == "rt-shadows") return {pixels * shadowLayers, false};
+  if (pass == "gbuffer-traced" || pass == "raw-gbuffer-traced") return {pixels, true};
+  if (pass == "rt-shadows" || pass == "raw-rt-shadows") return {pixels * shadowLayers, false};
   if (pass == "rt-ao" || pass == "rt-direct") return {pixels, false};
   if (pass == "rt-indirect") return {pixels * 2, false};
   if (pass == "rt-specular") return {pixels * uint64_t(maxDepth) * (1u + lightsPerHit), false};
@@ -156,6 +156,7 @@ struct Renderer::Impl {
       return {moments.previous(g, name + "-moments", f), moments.next(g, name + "-moments", f)};
     }
   } specularHistory, indirectHistory, directHistory;
+  std::optional<RawRayPipelines> rawPipelines;  // created on the first render with rawRays
   uint32_t frameIndex = 0;
   uint32_t taaFrames = 0;  // frames in the TAA history since its last reset
   scene::Scene pose;  // animated scenes: nodes, instances and animations only, posed each frame
@@ -400,6 +401,11 @@ struct Renderer::Impl {
       const graph::ImageHandle motion = gb.motion;
 
       graph::ImageHandle raw = traceShadows(graph, in, gb, shadowLights());
+      if (s.rawRays) {
+        if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
+        traceRawPrimary(graph, in, *rawPipelines);
+        traceRawShadows(graph, in, gb, shadowLights(), *rawPipelines);
+      }
       const ShadowDenoised shadows =
           denoiseShadows(graph, dn, surface, motion, raw,
                          {shadowHistory.previous(graph, "shadow-history", f), shadowHistory.next(graph, "shadow-history", f)},
@@ -490,7 +496,7 @@ struct Renderer::Impl {
         if (t.name == "readback" || t.name == "host-visible" || t.name == "output" || !measured) continue;
         if (!passTimes.count(t.name)) passOrder.push_back(t.name);
         passTimes[t.name].push_back(t.ms);
-        gpuMs += t.ms;
+        if (t.name.rfind("raw-", 0) != 0) gpuMs += t.ms;  // raw-rate passes are not part of the frame
       }
       if (measured) {
         out.frameGpuMs.push_back(gpuMs);
@@ -541,7 +547,7 @@ struct Renderer::Impl {
       if ((name == "rt-ao" && !s.ao) || (name == "rt-indirect" && !indirectOn(s))) rc = {};  // the shader returns at once
       ps.rays = rc.rays;
       ps.raysExact = rc.exact;
-      out.frameMedianMs += ps.medianMs;
+      if (name.rfind("raw-", 0) != 0) out.frameMedianMs += ps.medianMs;
       out.passes.push_back(ps);
     }
     return out;

@@ -37,6 +37,9 @@ struct RenderSettings {
   // Specular rays a reflection/refraction path traces at most (1..gpu::kMaxSpecularBounces); the
   // default is the bounce loop's historical bound.
   uint32_t maxDepth = 7;
+  // Also trace each frame's primary and shadow rays with trivial shaders (passes "raw-gbuffer-traced",
+  // "raw-rt-shadows"), the device's raw rate for those rays; left out of the frame's GPU time.
+  bool rawRays = false;
   uint32_t seed = 0;
   Mode mode = Mode::Hybrid;
   Primary primary = Primary::Auto;

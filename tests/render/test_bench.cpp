@@ -39,7 +39,7 @@ const std::filesystem::path& benchRun() {
     auto d = std::filesystem::temp_directory_path() / "rayster-tests" / "bench-run";
     std::filesystem::remove_all(d);
     std::filesystem::create_directories(d);
-    RunResult r = runRayster("bench builtin:cornell --size 64x36,48x32 --primary rt --warmup 2 --frames 3 --json " +
+    RunResult r = runRayster("bench builtin:cornell --size 64x36,48x32 --primary rt --warmup 2 --frames 3 --raw-rays --json " +
                              (d / "a.json").string());
     EXPECT_EQ(r.exitCode, 0) << r.output;
     return d;
@@ -72,6 +72,15 @@ TEST(Bench, JsonIsCompleteAndWellFormed) {
       tracedSomething = tracedSomething || p["rays"].get<uint64_t>() > 0;
     }
     EXPECT_TRUE(tracedSomething) << id;
+    // --raw-rays: the traced G-buffer and the shadows report their share of the raw ray rate.
+    size_t withRaw = 0;
+    for (const json& p : c["passes"])
+      if (p.contains("raw_fraction")) {
+        ++withRaw;
+        expectFiniteNumber(p, "raw_fraction", id + " " + p.value("name", "?"));
+        expectFiniteNumber(p, "raw_ms", id + " " + p.value("name", "?"));
+      }
+    EXPECT_EQ(withRaw, 2u) << id;
     for (const char* k : {"gpu_ms", "cpu_ms", "wall_ms"}) expectSummary(c["frame"][k], id + " frame " + k);
     EXPECT_EQ(c["frame"]["gpu_samples_ms"].size(), 3u);
     expectFiniteNumber(c["frame"], "grays_per_s", id);
