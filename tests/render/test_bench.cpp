@@ -3,6 +3,7 @@
 // timing assertions (lavapipe times are not performance).
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -166,6 +167,26 @@ TEST(BenchStats, MannWhitneySeparatesShiftedSamples) {
   }
   EXPECT_LT(app::mannWhitneyP(a, b), 1e-6);
   EXPECT_GT(app::mannWhitneyP(a, a), 0.5);
+}
+
+// The CI plan: JSON sweeps over size, light count (builtin:lights:N) and bounce depth.
+TEST(Bench, SmokePlanRunsEverySweep) {
+  const auto dir = testDir();
+  RunResult r = runRayster("bench --plan " + std::string(RAYSTER_SOURCE_DIR) + "/bench/plans/ci-smoke.json --json " +
+                           (dir / "smoke.json").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const json j = json::parse(readText(dir / "smoke.json"));
+  EXPECT_EQ(j["plan"], "ci-smoke");
+  std::map<std::string, int> perSweep;
+  for (const json& c : j["configs"]) {
+    EXPECT_TRUE(c.value("ok", false)) << c.dump();
+    ++perSweep[c.value("sweep", "")];
+  }
+  EXPECT_EQ(perSweep, (std::map<std::string, int>{{"resolution", 2}, {"lights", 2}, {"depth", 2}}));
+  EXPECT_EQ(j["configs"][2]["scene_stats"]["lights"], 1);
+  EXPECT_EQ(j["configs"][3]["scene_stats"]["lights"], 16);
+  const std::string svg = readText(dir / "smoke.svg");
+  for (const char* sweep : {"sweep-resolution", "sweep-lights", "sweep-depth"}) EXPECT_NE(svg.find(sweep), std::string::npos);
 }
 
 TEST(Bench, BadArgumentsFailCleanly) {
