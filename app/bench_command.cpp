@@ -68,11 +68,16 @@ double graysPerSecond(uint64_t rays, double ms) { return ms > 0 ? double(rays) /
 
 json passJson(const render::PassStats& p) {
   const Summary s = summarize(p.samplesMs);
-  return {{"name", p.name},           {"median_ms", p.medianMs},
-          {"p95_ms", p.p95Ms},        {"min_ms", p.minMs},
-          {"p5_ms", s.p5},            {"max_ms", s.max},
-          {"frames", p.samples},      {"samples_ms", p.samplesMs},
-          {"rays", p.rays},           {"rays_exact", p.raysExact},
+  return {{"name", p.name},
+          {"median_ms", p.medianMs},
+          {"p95_ms", p.p95Ms},
+          {"min_ms", p.minMs},
+          {"p5_ms", s.p5},
+          {"max_ms", s.max},
+          {"frames", p.samples},
+          {"samples_ms", p.samplesMs},
+          {"rays", p.rays},
+          {"rays_exact", p.raysExact},
           {"grays_per_s", graysPerSecond(p.rays, p.medianMs)}};
 }
 
@@ -108,8 +113,10 @@ json configResult(const rhi::Context& ctx, const BenchConfig& c, const render::R
                 {"grays_per_s", graysPerSecond(rays, gpu.median)}};
   const auto& st = out.scene;
   j["scene_stats"] = {{"triangles", st.triangles}, {"spheres", st.spheres}, {"lights", st.lights}};
-  j["accel"] = {{"blas_bytes", st.blasBytes},     {"blas_compacted_bytes", st.blasCompactedBytes},
-                {"tlas_bytes", st.tlasBytes},     {"build_ms", st.accelBuildMs},
+  j["accel"] = {{"blas_bytes", st.blasBytes},
+                {"blas_compacted_bytes", st.blasCompactedBytes},
+                {"tlas_bytes", st.tlasBytes},
+                {"build_ms", st.accelBuildMs},
                 {"upload_ms", st.uploadMs}};
   j["memory"] = {{"used_bytes", st.deviceBytesUsed}, {"reserved_bytes", st.deviceBytesReserved},
                  {"image_bytes", st.imageBytes},     {"buffer_bytes", st.bufferBytes},
@@ -132,8 +139,12 @@ Result<json> runConfig(const BenchOptions& o, const BenchConfig& c) {
     s.frames = c.warmup + c.frames;
     s.warmupFrames = c.warmup;
     s.seed = c.seed;
-    s.mode = c.mode == "pathtrace" ? render::Mode::PathTrace : c.mode == "raster" ? render::Mode::Raster : render::Mode::Hybrid;
-    s.primary = c.primary == "raster" ? render::Primary::Raster : c.primary == "rt" ? render::Primary::Traced : render::Primary::Auto;
+    s.mode = c.mode == "pathtrace" ? render::Mode::PathTrace
+             : c.mode == "raster"  ? render::Mode::Raster
+                                   : render::Mode::Hybrid;
+    s.primary = c.primary == "raster" ? render::Primary::Raster
+                : c.primary == "rt"   ? render::Primary::Traced
+                                      : render::Primary::Auto;
     s.maxDepth = c.maxDepth;
     s.shadowLights = c.shadowLights;
     s.rawRays = c.rawRays;
@@ -189,7 +200,9 @@ std::string isoDate() {
   return buf;
 }
 
-std::string withExtension(const std::string& path, const char* ext) { return fs::path(path).replace_extension(ext).string(); }
+std::string withExtension(const std::string& path, const char* ext) {
+  return fs::path(path).replace_extension(ext).string();
+}
 
 void printSummary(const json& c) {
   std::fflush(stderr);
@@ -254,7 +267,8 @@ int parentCommand(const BenchOptions& o) {
   if (auto s = writeText(o.json, results.dump(1) + "\n"); !s) return fail(s.error());
   if (auto s = writeText(csvPath, benchCsv(results)); !s) return fail(s.error());
   if (auto s = writeText(svgPath, benchSvg(results)); !s) return fail(s.error());
-  log::info("wrote {}, {}, {} ({} configuration(s), {} failed)", o.json, csvPath, svgPath, plan->configs.size(), failures);
+  log::info("wrote {}, {}, {} ({} configuration(s), {} failed)", o.json, csvPath, svgPath, plan->configs.size(),
+            failures);
   return failures == 0 ? 0 : int(ExitCode::Failure);
 }
 
@@ -272,13 +286,13 @@ int compareCommandBench(const BenchOptions& o) {
     std::printf("%-44s %-22s %10.4f %10.4f %+7.1f%% %-13s %8s  CHANGED\n", c.config.c_str(), c.pass.c_str(), c.medianA,
                 c.medianB, 100.0 * c.relative, c.test.c_str(), c.p < 0 ? "-" : fmt::format("{:.2g}", c.p).c_str());
   }
-  std::printf("%zu of %zu pass(es) changed by more than %.0f %% and significantly (%s vs %s)\n", flagged, changes.size(),
-              100.0 * o.minChange, o.compare[0].c_str(), o.compare[1].c_str());
+  std::printf("%zu of %zu pass(es) changed by more than %.0f %% and significantly (%s vs %s)\n", flagged,
+              changes.size(), 100.0 * o.minChange, o.compare[0].c_str(), o.compare[1].c_str());
   if (changes.empty()) std::fprintf(stderr, "rayster: bench --compare: no configuration in common\n");
   return flagged > 0 && o.failOnChange ? int(ExitCode::TestFailed) : 0;
 }
 
-} // namespace
+}  // namespace
 
 int benchCommand(const BenchOptions& o) {
   if (!o.compare.empty()) {
@@ -289,4 +303,4 @@ int benchCommand(const BenchOptions& o) {
   return parentCommand(o);
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -11,7 +11,7 @@ namespace rayster::app {
 
 struct BenchOptions {
   BenchAxes axes;
-  std::string plan;                          // a JSON plan instead of the axes
+  std::string plan;                           // a JSON plan instead of the axes
   std::string json = "bench-out/bench.json";  // results; CSV and SVG default to the same stem
   std::string csv, svg;
   std::vector<std::string> compare;  // two result files: compare instead of running
@@ -24,4 +24,4 @@ struct BenchOptions {
 
 int benchCommand(const BenchOptions& options);
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -25,10 +25,11 @@ std::string BenchConfig::id() const {
 }
 
 nlohmann::json BenchConfig::toJson() const {
-  return {{"sweep", sweep},   {"axis", axis},       {"scene", scene},          {"width", width},
-          {"height", height}, {"mode", mode},       {"primary", primary},      {"max_depth", maxDepth},
-          {"shadow_lights", shadowLights},          {"warmup", warmup},        {"frames", frames},
-          {"seed", seed},   {"raw_rays", rawRays}};
+  return {{"sweep", sweep},     {"axis", axis},          {"scene", scene},
+          {"width", width},     {"height", height},      {"mode", mode},
+          {"primary", primary}, {"max_depth", maxDepth}, {"shadow_lights", shadowLights},
+          {"warmup", warmup},   {"frames", frames},      {"seed", seed},
+          {"raw_rays", rawRays}};
 }
 
 Result<BenchConfig> BenchConfig::fromJson(const nlohmann::json& j) {
@@ -63,7 +64,8 @@ Status checkAxes(const BenchAxes& a) {
     if (m != "hybrid" && m != "pathtrace" && m != "raster")
       return makeError(ExitCode::BadArguments, "bench: unknown mode '{}'", m);
   for (const auto& p : a.primaries)
-    if (p != "raster" && p != "rt" && p != "auto") return makeError(ExitCode::BadArguments, "bench: unknown primary '{}'", p);
+    if (p != "raster" && p != "rt" && p != "auto")
+      return makeError(ExitCode::BadArguments, "bench: unknown primary '{}'", p);
   for (uint32_t d : a.maxDepths)
     if (d < 1 || d > 8) return makeError(ExitCode::BadArguments, "bench: max depth {} is outside 1..8", d);
   if (a.scenes.empty() || a.sizes.empty() || a.modes.empty() || a.primaries.empty() || a.maxDepths.empty())
@@ -111,7 +113,7 @@ void readList(const nlohmann::json& j, const char* key, std::vector<T>& out) {
     out.push_back(j[key].get<T>());
 }
 
-} // namespace
+}  // namespace
 
 Result<BenchPlan> planFromAxes(const BenchAxes& axes) {
   if (auto s = checkAxes(axes); !s) return s.error();
@@ -161,4 +163,4 @@ Result<BenchPlan> loadPlan(const std::string& path) {
   return plan;
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

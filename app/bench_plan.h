@@ -21,7 +21,7 @@ struct BenchConfig {
   uint32_t shadowLights = 8;
   uint32_t warmup = 16, frames = 64;  // frames measured after the warm-up
   uint32_t seed = 1;
-  bool rawRays = false;  // also time the raw-rate twins of the primary and shadow rays
+  bool rawRays = false;    // also time the raw-rate twins of the primary and shadow rays
   std::string id() const;  // unique within a plan, stable across runs (compare matches by it)
   nlohmann::json toJson() const;
   static Result<BenchConfig> fromJson(const nlohmann::json& j);
@@ -47,7 +47,8 @@ bool parseSizeText(const std::string& text, uint32_t& w, uint32_t& h);
 // The cross product of the axes, as one sweep whose x axis is the first axis with several values.
 Result<BenchPlan> planFromAxes(const BenchAxes& axes);
 // A JSON plan: {"name", "warmup", "frames", "seed", "sweeps": [{"name", "scenes", "sizes", "modes",
-// "primaries", "max_depth", "shadow_lights", "warmup", "frames", "raw_rays", "axis"}]} (sweep fields default to the top).
+// "primaries", "max_depth", "shadow_lights", "warmup", "frames", "raw_rays", "axis"}]} (sweep fields default to the
+// top).
 Result<BenchPlan> loadPlan(const std::string& path);
 
-} // namespace rayster::app
+}  // namespace rayster::app

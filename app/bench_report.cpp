@@ -24,11 +24,20 @@ std::string xmlEscape(const std::string& s) {
   std::string o;
   for (char c : s) {
     switch (c) {
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '&': o += "&amp;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
+      case '<':
+        o += "&lt;";
+        break;
+      case '>':
+        o += "&gt;";
+        break;
+      case '&':
+        o += "&amp;";
+        break;
+      case '"':
+        o += "&quot;";
+        break;
+      default:
+        o += c;
     }
   }
   return o;
@@ -45,7 +54,7 @@ double frameMedian(const nlohmann::json& c) {
   return c.contains("frame") ? c["frame"]["gpu_ms"].value("median", 0.0) : 0.0;
 }
 
-} // namespace
+}  // namespace
 
 std::string axisValue(const nlohmann::json& c) {
   const std::string axis = c.value("axis", "");
@@ -61,7 +70,8 @@ std::string axisValue(const nlohmann::json& c) {
 }
 
 std::string benchCsv(const nlohmann::json& results) {
-  std::string out = "id,sweep,axis,x,scene,width,height,mode,primary,max_depth,pass,median_ms,p95_ms,min_ms,rays,grays_per_s\n";
+  std::string out =
+      "id,sweep,axis,x,scene,width,height,mode,primary,max_depth,pass,median_ms,p95_ms,min_ms,rays,grays_per_s\n";
   for (const auto& c : configsOf(results)) {
     if (!c.value("ok", false)) continue;
     const std::string head = fmt::format(
@@ -73,8 +83,9 @@ std::string benchCsv(const nlohmann::json& results) {
                          p.value("median_ms", 0.0), p.value("p95_ms", 0.0), p.value("min_ms", 0.0),
                          p.value("rays", uint64_t(0)), p.value("grays_per_s", 0.0));
     const auto& g = c["frame"]["gpu_ms"];
-    out += fmt::format("{},frame,{:.6f},{:.6f},{:.6f},{},{:.4f}\n", head, g.value("median", 0.0), g.value("p95", 0.0),
-                       g.value("min", 0.0), c["frame"].value("rays", uint64_t(0)), c["frame"].value("grays_per_s", 0.0));
+    out +=
+        fmt::format("{},frame,{:.6f},{:.6f},{:.6f},{},{:.4f}\n", head, g.value("median", 0.0), g.value("p95", 0.0),
+                    g.value("min", 0.0), c["frame"].value("rays", uint64_t(0)), c["frame"].value("grays_per_s", 0.0));
   }
   return out;
 }
@@ -106,9 +117,10 @@ std::string benchSvg(const nlohmann::json& results) {
   for (size_t si = 0; si < sweepOrder.size(); ++si) {
     const auto& configs = sweeps[sweepOrder[si]];
     const double y0 = kTop + double(si) * kSection;
-    svg += fmt::format("<g class=\"sweep\" id=\"sweep-{}\">\n<text x=\"10\" y=\"{:.1f}\" font-size=\"13\">sweep {}: "
-                       "per-pass GPU ms (median), stacked</text>\n",
-                       xmlEscape(sweepOrder[si]), y0 + 14, xmlEscape(sweepOrder[si]));
+    svg += fmt::format(
+        "<g class=\"sweep\" id=\"sweep-{}\">\n<text x=\"10\" y=\"{:.1f}\" font-size=\"13\">sweep {}: "
+        "per-pass GPU ms (median), stacked</text>\n",
+        xmlEscape(sweepOrder[si]), y0 + 14, xmlEscape(sweepOrder[si]));
     double maxFrame = 0;
     for (const auto* c : configs) {
       double sum = 0;
@@ -117,9 +129,10 @@ std::string benchSvg(const nlohmann::json& results) {
     }
     if (maxFrame <= 0) maxFrame = 1;
     const double barTop = y0 + 24, barBottom = barTop + kChartH;
-    svg += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{0}\" y2=\"{2:.1f}\" stroke=\"black\"/>\n"
-                       "<text x=\"5\" y=\"{3:.1f}\">{4:.3f} ms</text><text x=\"5\" y=\"{2:.1f}\">0</text>\n",
-                       kLeft, barTop, barBottom, barTop + 10, maxFrame);
+    svg += fmt::format(
+        "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{0}\" y2=\"{2:.1f}\" stroke=\"black\"/>\n"
+        "<text x=\"5\" y=\"{3:.1f}\">{4:.3f} ms</text><text x=\"5\" y=\"{2:.1f}\">0</text>\n",
+        kLeft, barTop, barBottom, barTop + 10, maxFrame);
     const double slot = plotW / double(configs.size());
     for (size_t ci = 0; ci < configs.size(); ++ci) {
       const auto& c = *configs[ci];
@@ -130,10 +143,10 @@ std::string benchSvg(const nlohmann::json& results) {
         const double h = p.value("median_ms", 0.0) / maxFrame * kChartH;
         const size_t colourIndex = size_t(std::find(passNames.begin(), passNames.end(), name) - passNames.begin());
         y -= h;
-        svg += fmt::format("<rect class=\"bar\" x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.2f}\" "
-                           "fill=\"{}\"><title>{} {}: {:.4f} ms</title></rect>\n",
-                           x, y, w, h, colour(colourIndex), xmlEscape(c.value("id", "")), xmlEscape(name),
-                           p.value("median_ms", 0.0));
+        svg += fmt::format(
+            "<rect class=\"bar\" x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.2f}\" "
+            "fill=\"{}\"><title>{} {}: {:.4f} ms</title></rect>\n",
+            x, y, w, h, colour(colourIndex), xmlEscape(c.value("id", "")), xmlEscape(name), p.value("median_ms", 0.0));
       }
       svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" transform=\"rotate(30 {:.1f} {:.1f})\">{}</text>\n", x,
                          barBottom + 12, x, barBottom + 12, xmlEscape(axisValue(c)));
@@ -141,11 +154,12 @@ std::string benchSvg(const nlohmann::json& results) {
     // Frame GPU median along the sweep's axis (configurations in plan order).
     if (configs.size() > 1) {
       const double lineTop = barBottom + 70, lineBottom = lineTop + kChartH - 40;
-      svg += fmt::format("<text x=\"10\" y=\"{:.1f}\" font-size=\"13\">sweep {}: frame GPU ms (median) vs {}</text>\n"
-                         "<line x1=\"{}\" y1=\"{:.1f}\" x2=\"{}\" y2=\"{:.1f}\" stroke=\"black\"/>\n"
-                         "<text x=\"5\" y=\"{:.1f}\">{:.3f} ms</text>\n",
-                         lineTop - 8, xmlEscape(sweepOrder[si]), xmlEscape(configs[0]->value("axis", "")), kLeft,
-                         lineTop, kLeft, lineBottom, lineTop + 10, maxFrame);
+      svg += fmt::format(
+          "<text x=\"10\" y=\"{:.1f}\" font-size=\"13\">sweep {}: frame GPU ms (median) vs {}</text>\n"
+          "<line x1=\"{}\" y1=\"{:.1f}\" x2=\"{}\" y2=\"{:.1f}\" stroke=\"black\"/>\n"
+          "<text x=\"5\" y=\"{:.1f}\">{:.3f} ms</text>\n",
+          lineTop - 8, xmlEscape(sweepOrder[si]), xmlEscape(configs[0]->value("axis", "")), kLeft, lineTop, kLeft,
+          lineBottom, lineTop + 10, maxFrame);
       std::string points;
       for (size_t ci = 0; ci < configs.size(); ++ci) {
         const double x = kLeft + 5 + (double(ci) + 0.35) * slot;
@@ -161,12 +175,12 @@ std::string benchSvg(const nlohmann::json& results) {
   // Legend: one swatch per pass.
   svg += "<g class=\"legend\">\n";
   for (size_t i = 0; i < passNames.size(); ++i)
-    svg += fmt::format("<rect x=\"{0:.0f}\" y=\"{1:.0f}\" width=\"12\" height=\"12\" fill=\"{2}\"/><text x=\"{3:.0f}\" "
-                       "y=\"{4:.0f}\">{5}</text>\n",
-                       kWidth, kTop + 14.0 * double(i), colour(i), kWidth + 16, kTop + 14.0 * double(i) + 10,
-                       xmlEscape(passNames[i]));
+    svg += fmt::format(
+        "<rect x=\"{0:.0f}\" y=\"{1:.0f}\" width=\"12\" height=\"12\" fill=\"{2}\"/><text x=\"{3:.0f}\" "
+        "y=\"{4:.0f}\">{5}</text>\n",
+        kWidth, kTop + 14.0 * double(i), colour(i), kWidth + 16, kTop + 14.0 * double(i) + 10, xmlEscape(passNames[i]));
   svg += "</g>\n</svg>\n";
   return svg;
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

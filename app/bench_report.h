@@ -15,4 +15,4 @@ std::string benchSvg(const nlohmann::json& results);
 // The value of a configuration on its sweep's axis, as plotted (e.g. "1920x1080", "lights 16").
 std::string axisValue(const nlohmann::json& config);
 
-} // namespace rayster::app
+}  // namespace rayster::app

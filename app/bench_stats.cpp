@@ -15,11 +15,12 @@ double quantile(const std::vector<double>& sorted, double q) {
   const double f = pos - double(i);
   return i + 1 < sorted.size() ? sorted[i] * (1 - f) + sorted[i + 1] * f : sorted[i];
 }
-} // namespace
+}  // namespace
 
 const nlohmann::json& configsOf(const nlohmann::json& results) {
   static const nlohmann::json kEmpty = nlohmann::json::array();
-  return results.is_object() && results.contains("configs") && results["configs"].is_array() ? results["configs"] : kEmpty;
+  return results.is_object() && results.contains("configs") && results["configs"].is_array() ? results["configs"]
+                                                                                             : kEmpty;
 }
 
 Summary summarize(std::vector<double> v) {
@@ -89,7 +90,7 @@ std::map<std::string, std::vector<double>> passSamples(const nlohmann::json& con
   return m;
 }
 
-} // namespace
+}  // namespace
 
 std::vector<PassChange> compareResults(const nlohmann::json& a, const nlohmann::json& b, double minChange) {
   std::vector<PassChange> changes;
@@ -129,4 +130,4 @@ std::vector<PassChange> compareResults(const nlohmann::json& a, const nlohmann::
   return changes;
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

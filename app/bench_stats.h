@@ -41,4 +41,4 @@ struct PassChange {
 // the per-frame GPU sum). Returns every pair found in both; `flagged` marks reported changes.
 std::vector<PassChange> compareResults(const nlohmann::json& a, const nlohmann::json& b, double minChange);
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -13,9 +13,9 @@
 namespace rayster::scene {
 namespace {
 constexpr uint32_t kLightsSceneInstances = 16;
-constexpr float kRingHeight = 2.5f;      // metres above the floor: every bunny sees several lights
-constexpr float kLightRadius = 0.05f;    // small soft lights, no visible geometry (triangles stay fixed)
-constexpr float kTotalIntensity = 40.0f; // shared by all lights, so exposure stays put across the sweep
+constexpr float kRingHeight = 2.5f;       // metres above the floor: every bunny sees several lights
+constexpr float kLightRadius = 0.05f;     // small soft lights, no visible geometry (triangles stay fixed)
+constexpr float kTotalIntensity = 40.0f;  // shared by all lights, so exposure stays put across the sweep
 }  // namespace
 
 Result<Scene> makeLightsScene(uint32_t count) {

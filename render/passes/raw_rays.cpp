@@ -10,7 +10,7 @@ namespace rayster::render {
 namespace {
 // Results nobody reads: a side effect keeps the graph from culling the pass.
 constexpr VkImageUsageFlags kScratchUsage = VK_IMAGE_USAGE_STORAGE_BIT;
-} // namespace
+}  // namespace
 
 void traceRawPrimary(graph::RenderGraph& graph, const FrameInputs& in, const RawRayPipelines& raw) {
   graph::ImageHandle hit =
@@ -62,4 +62,4 @@ void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBu
       });
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

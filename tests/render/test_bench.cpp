@@ -40,8 +40,9 @@ const std::filesystem::path& benchRun() {
     auto d = std::filesystem::temp_directory_path() / "rayster-tests" / "bench-run";
     std::filesystem::remove_all(d);
     std::filesystem::create_directories(d);
-    RunResult r = runRayster("bench builtin:cornell --size 64x36,48x32 --primary rt --warmup 2 --frames 3 --raw-rays --json " +
-                             (d / "a.json").string());
+    RunResult r =
+        runRayster("bench builtin:cornell --size 64x36,48x32 --primary rt --warmup 2 --frames 3 --raw-rays --json " +
+                   (d / "a.json").string());
     EXPECT_EQ(r.exitCode, 0) << r.output;
     return d;
   }();
@@ -186,7 +187,8 @@ TEST(Bench, SmokePlanRunsEverySweep) {
   EXPECT_EQ(j["configs"][2]["scene_stats"]["lights"], 1);
   EXPECT_EQ(j["configs"][3]["scene_stats"]["lights"], 16);
   const std::string svg = readText(dir / "smoke.svg");
-  for (const char* sweep : {"sweep-resolution", "sweep-lights", "sweep-depth"}) EXPECT_NE(svg.find(sweep), std::string::npos);
+  for (const char* sweep : {"sweep-resolution", "sweep-lights", "sweep-depth"})
+    EXPECT_NE(svg.find(sweep), std::string::npos);
 }
 
 TEST(Bench, BadArgumentsFailCleanly) {
@@ -195,5 +197,5 @@ TEST(Bench, BadArgumentsFailCleanly) {
   EXPECT_EQ(runRayster("bench --plan /nonexistent.json").exitCode, 3);
 }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test
