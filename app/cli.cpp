@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/bench_command.h"
 #include "app/commands.h"
 #include "app/compare_command.h"
 #include "app/render_command.h"
@@ -59,7 +60,10 @@ int run(int argc, char** argv) {
   uint32_t spp = 0;
   render->add_option("--spp", spp, "Samples per pixel of --mode pathtrace, one per frame (sets --frames)")
       ->check(CLI::Range(1u, 100000u));
-  render->add_option("--max-depth", ro.settings.maxDepth, "Path vertices of --mode pathtrace (default 8)")
+  render->add_option("--max-depth", ro.settings.maxDepth,
+                     "Surface interactions along a path after the camera ray (default 8): the path tracer's "
+                     "vertices, and the G-buffer surface plus up to N-1 (at most 8) reflection/refraction rays "
+                     "in hybrid mode")
       ->check(CLI::Range(1u, 64u));
   render->add_option("--mode", mode,
                      "hybrid (raster/traced G-buffer + ray-traced effects), pathtrace (the reference) or raster "
@@ -112,6 +116,39 @@ int run(int argc, char** argv) {
                      "shadowed light N (0-7) shadowN-raw, shadowN-denoised; --mode pathtrace: variance (of the mean)");
   render->add_option("--json", ro.jsonOutput, "Write per-pass GPU times and settings as JSON to this file");
 
+  BenchOptions bo;
+  CLI::App* bench = cli.add_subcommand(
+      "bench", "Time scenes x sizes x modes (one process per configuration): per-pass GPU ms, rays, memory; "
+               "writes JSON, CSV and an SVG plot. --compare A.json B.json reports significant changes");
+  bench->add_option("scenes", bo.axes.scenes, "Scenes (as for render); default builtin:whitted");
+  bench->add_option("--size,--sizes", bo.axes.sizes, "Image sizes WxH, comma-separated (default 1920x1080)")
+      ->delimiter(',');
+  bench->add_option("--mode,--modes", bo.axes.modes, "Modes, comma-separated: hybrid, pathtrace, raster")->delimiter(',');
+  bench->add_option("--primary", bo.axes.primaries, "G-buffer producers, comma-separated: raster, rt, auto")
+      ->delimiter(',');
+  bench->add_option("--max-depth", bo.axes.maxDepths, "Specular bounce depths, comma-separated (1-8, default 7)")
+      ->delimiter(',');
+  bench->add_option("--shadow-lights", bo.axes.shadowLights, "As for render (0-8, default 8)");
+  bench->add_option("--warmup", bo.axes.warmup, "Frames rendered before measuring (default 16)");
+  bench->add_option("--frames", bo.axes.frames, "Frames measured after the warm-up (default 64)")
+      ->check(CLI::Range(1u, 100000u));
+  bench->add_option("--seed", bo.axes.seed, "Random seed (default 1)");
+  bench->add_flag("--raw-rays", bo.axes.rawRays,
+                  "Also trace the primary and shadow rays with trivial shaders and report each pass's share "
+                  "of that raw ray rate (raw_fraction)");
+  bench->add_option("--plan", bo.plan, "A JSON plan of sweeps (bench/plans/*.json) instead of the axes above");
+  bench->add_option("--json", bo.json, "Results (default bench-out/bench.json); CSV and SVG beside it");
+  bench->add_option("--csv", bo.csv, "CSV output (default: the --json path with .csv)");
+  bench->add_option("--svg", bo.svg, "SVG plot (default: the --json path with .svg)");
+  bench->add_option("--compare", bo.compare, "Compare two result files instead of running: A.json B.json")
+      ->expected(2);
+  bench->add_option("--min-change", bo.minChange,
+                    "--compare reports changes of the median larger than this fraction (default 0.05)");
+  bench->add_flag("--fail-on-change", bo.failOnChange, "--compare exits 9 when it reports a change");
+  bench->add_option("--child", bo.child, "(internal) run one configuration, given as JSON")->group("");
+  bench->add_option("--child-out", bo.childOut, "(internal) where the child writes its JSON")->group("");
+  bench->fallthrough();
+
   CLI::App* info = cli.add_subcommand("info", "List Vulkan devices and their ray-tracing capabilities");
 
   CompareOptions co;
@@ -158,6 +195,12 @@ int run(int argc, char** argv) {
   setenv("XDG_RUNTIME_DIR", "/tmp", /*overwrite=*/0);
 
   if (info->parsed()) return infoCommand();
+  if (bench->parsed()) {
+    bo.validation = validation;
+    bo.device = device;
+    bo.debugLabels = !noLabels;
+    return benchCommand(bo);
+  }
   if (compareCmd->parsed()) return compareCommand(co);
   if (render->parsed()) {
     if (!parseSize(size, ro.settings.width, ro.settings.height)) {

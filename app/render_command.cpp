@@ -50,6 +50,7 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   j["primary"] = render::primaryName(out.primaryUsed);
   j["tonemap"] = render::tonemapperName(o.settings.tonemap);
   j["taa"] = o.settings.taa;
+  j["max_depth"] = o.settings.maxDepth;
   if (out.rasterGBufferMs >= 0) j["auto"] = {{"raster_gbuffer_ms", out.rasterGBufferMs}, {"traced_gbuffer_ms", out.tracedGBufferMs}};
   j["frame_gpu_ms_median"] = out.frameMedianMs;
   const auto& st = out.scene;
@@ -60,7 +61,7 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
                       {"device_bytes_reserved", st.deviceBytesReserved}};
   for (const auto& p : out.passes)
     j["passes"].push_back({{"name", p.name}, {"median_ms", p.medianMs}, {"min_ms", p.minMs}, {"p95_ms", p.p95Ms},
-                           {"frames", p.samples}});
+                           {"frames", p.samples}, {"rays", p.rays}});
   return j;
 }
 

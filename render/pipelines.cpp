@@ -99,4 +99,23 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   return p;
 }
 
+RawRayPipelines RawRayPipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
+  RawRayPipelines p;
+  rhi::RayTracingPipelineDesc primary;
+  primary.raygen = "raw_primary.rgen";
+  primary.miss = {"shadow.rmiss"};  // marks the payload; any trivial miss would do
+  primary.hitGroups = {{"raw.rchit", "alpha.rahit", ""}, {"raw.rchit", "", "sphere.rint"}};
+  primary.globalSet = textures;
+  primary.bindings = {{0, kUniform}, {1, kTlas}, {2, kStorage}};
+  p.primary = rhi::RayTracingPipeline(ctx, primary);
+  rhi::RayTracingPipelineDesc shadow;
+  shadow.raygen = "raw_shadows.rgen";
+  shadow.miss = {"shadow.rmiss"};
+  shadow.hitGroups = {{"", "", ""}, {"", "", "sphere.rint"}};  // opaque: no alpha any-hit
+  shadow.globalSet = textures;
+  shadow.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kStorage}};
+  p.shadows = rhi::RayTracingPipeline(ctx, shadow);
+  return p;
+}
+
 } // namespace rayster::render

@@ -43,4 +43,12 @@ struct Pipelines {
 // The path tracer's pipeline, created only when a render asks for --mode pathtrace.
 rhi::RayTracingPipeline createPathTracePipeline(rhi::Context& ctx, VkDescriptorSetLayout textures);
 
+// Raw-ray-rate twins of the traced G-buffer and the shadow pass (RenderSettings::rawRays): the same
+// rays with trivial hit and miss shaders. Created only when asked for.
+struct RawRayPipelines {
+  rhi::RayTracingPipeline primary;
+  rhi::RayTracingPipeline shadows;
+  static RawRayPipelines create(rhi::Context& ctx, VkDescriptorSetLayout textures);
+};
+
 } // namespace rayster::render

@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <deque>
@@ -81,6 +82,10 @@ uint32_t texelBytes(VkFormat format) {
 constexpr float kCutMoveFraction = 0.25f;  // of the distance to the target (the scene's scale)
 constexpr float kCutAngleDegrees = 15.0f;  // turn of the view direction
 
+// Timestamp regions per frame: the hybrid frame has ~35 passes with every denoiser on (each à-trous
+// step is its own pass); a full pool silently drops the last passes' times.
+constexpr uint32_t kMaxTimedPasses = 96;
+
 bool isCameraCut(const scene::Camera& before, const scene::Camera& now) {
   const glm::vec3 dirBefore = before.target - before.position, dirNow = now.target - now.position;
   const float distance = glm::length(dirBefore);
@@ -90,6 +95,23 @@ bool isCameraCut(const scene::Camera& before, const scene::Camera& now) {
 }
 
 } // namespace
+
+RayCount launchedRays(const std::string& pass, uint32_t width, uint32_t height, uint32_t shadowLayers,
+                      uint32_t lightsPerHit, uint32_t maxDepth) {
+  const uint64_t pixels = uint64_t(width) * height;
+  // traceRayEXT calls per invocation, from the shaders: one primary ray (gbuffer.rgen); one shadow
+  // ray per layer (shadows.rgen, one launch layer per shadowed light); one occlusion ray (ao.rgen);
+  // one shadow ray to the importance-selected light (direct.rgen); a bounce ray plus a shadow ray at
+  // its hit (indirect.rgen); and per traced specular bounce one ray plus a shadow ray per light shaded
+  // at the hit (specular.rgen). Invocations on the background, non-specular pixels or lights behind
+  // the surface return before tracing, and paths end early, so all but the primary rays are bounds.
+  if (pass == "gbuffer-traced" || pass == "raw-gbuffer-traced") return {pixels, true};
+  if (pass == "rt-shadows" || pass == "raw-rt-shadows") return {pixels * shadowLayers, false};
+  if (pass == "rt-ao" || pass == "rt-direct") return {pixels, false};
+  if (pass == "rt-indirect") return {pixels * 2, false};
+  if (pass == "rt-specular") return {pixels * uint64_t(maxDepth) * (1u + lightsPerHit), false};
+  return {};
+}
 
 const char* modeName(Mode m) {
   switch (m) {
@@ -136,6 +158,7 @@ struct Renderer::Impl {
       return {moments.previous(g, name + "-moments", f), moments.next(g, name + "-moments", f)};
     }
   } specularHistory, indirectHistory, directHistory;
+  std::optional<RawRayPipelines> rawPipelines;  // created on the first render with rawRays
   uint32_t frameIndex = 0;
   uint32_t taaFrames = 0;  // frames in the TAA history since its last reset
   scene::Scene pose;  // animated scenes: nodes, instances and animations only, posed each frame
@@ -146,7 +169,7 @@ struct Renderer::Impl {
         linear(c, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
         constants(c, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, rhi::MemoryUsage::Upload,
                   "frame-constants"),
-        commands(c), timers(c, 32) {}
+        commands(c), timers(c, kMaxTimedPasses) {}
 
   bool manyLights = false;  // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
   bool indirectOn(const RenderSettings& s) const { return s.indirect.value_or(scene.indirectByDefault); }
@@ -210,6 +233,7 @@ struct Renderer::Impl {
     fc.environmentCdfWidth = gpu.environment.cdfWidth;
     fc.environmentCdfHeight = gpu.environment.cdfHeight;
     fc.maxDepth = std::max(1u, s.maxDepth);
+    fc.maxSpecularBounces = specularBounces(s);
     std::memcpy(constants.mapped(), &fc, sizeof(fc));
     return fc.unjitteredClipFromWorld;
   }
@@ -304,7 +328,17 @@ struct Renderer::Impl {
     const rhi::MemoryStats mem = ctx.memory().stats();
     st.deviceBytesUsed = mem.usedBytes;
     st.deviceBytesReserved = mem.reservedBytes;
+    st.imageBytes = mem.bytes(rhi::MemoryCategory::Image);
+    st.bufferBytes = mem.bytes(rhi::MemoryCategory::Buffer);
+    st.accelBytes = mem.bytes(rhi::MemoryCategory::Accel);
+    st.hostBytes = mem.bytes(rhi::MemoryCategory::Host);
+    st.lights = gpu.lightCount;
     return st;
+  }
+
+  // Rays of the hybrid's reflection/refraction loop after the G-buffer surface (RenderSettings::maxDepth).
+  static uint32_t specularBounces(const RenderSettings& s) {
+    return std::clamp(s.maxDepth > 1 ? s.maxDepth - 1 : 1u, 1u, gpu::kMaxSpecularBounces);
   }
 
   std::unique_ptr<PathTracer> pathTracer;  // created by the first path-traced render
@@ -378,8 +412,13 @@ struct Renderer::Impl {
         return makeError(ExitCode::BadArguments, "unknown AOV '{}'", name);
     std::map<std::string, std::vector<double>> passTimes;
     std::vector<std::string> passOrder;
+    using Clock = std::chrono::steady_clock;
+    const auto msSince = [](Clock::time_point t0) {
+      return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    };
 
     for (uint32_t f = 0; f < s.frames; ++f) {
+      const Clock::time_point frameStart = Clock::now();
       frameIndex = f;
       const scene::Camera camera = s.cameraPath ? cameraOnPath(*cam, s, f) : *cam;
       // A cut (the first frame of a run, a jump of the camera, or a listed frame) restarts every history.
@@ -414,6 +453,11 @@ struct Renderer::Impl {
       const graph::ImageHandle motion = gb.motion;
 
       graph::ImageHandle raw = traceShadows(graph, in, gb, shadowLights());
+      if (s.rawRays) {
+        if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
+        traceRawPrimary(graph, in, *rawPipelines);
+        traceRawShadows(graph, in, gb, shadowLights(), *rawPipelines);
+      }
       // Many-light mode traces no shadow layers: lighting reads none, so nothing to denoise.
       graph::ImageHandle visibility = raw;
       if (shadowLights() > 0)
@@ -453,6 +497,13 @@ struct Renderer::Impl {
                          {hdr, gb.depth, taaHistory.previous(graph, "taa-history", f),
                           taaHistory.next(graph, "taa-history", f), gb.motion, taaFrames});
       graph::ImageHandle ldr = tonemap(graph, in, hdr, {std::exp2(s.exposureEv), s.tonemap, s.seed});
+      // Every frame's image counts as consumed, as a presented one would be: otherwise the graph culls
+      // tonemapping in all frames but the last (whose readback uses it) and its timings miss them.
+      if (!last)
+        graph.addPass("output", [&](graph::PassBuilder& b) {
+          b.read(ldr, graph::Use::TransferSrc);
+          b.sideEffect();
+        }, [](graph::PassContext&) {});
       if (last) {
         readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));
         readback(graph, hdr, graph.importBuffer("hdr-readback", &hdrReadback, &hdrState));
@@ -493,12 +544,23 @@ struct Renderer::Impl {
       VkCommandBuffer cmd = commands.begin();
       timers.reset(cmd);
       graph.execute(cmd, &timers);
-      ctx.wait(commands.submit());
+      const uint64_t submitted = commands.submit();
+      const double cpuMs = msSince(frameStart);
+      ctx.wait(submitted);
+      const double wallMs = msSince(frameStart);
       for (History* h : {&surfaceHistory, &shadowHistory, &aoHistory}) h->valid = true;
+      const bool measured = f >= s.warmupFrames || s.warmupFrames >= s.frames;  // never an empty sample
+      double gpuMs = 0;
       for (auto& t : timers.read()) {
-        if (t.name == "readback" || t.name == "host-visible") continue;
+        if (t.name == "readback" || t.name == "host-visible" || t.name == "output" || !measured) continue;
         if (!passTimes.count(t.name)) passOrder.push_back(t.name);
         passTimes[t.name].push_back(t.ms);
+        if (t.name.rfind("raw-", 0) != 0) gpuMs += t.ms;  // raw-rate passes are not part of the frame
+      }
+      if (measured) {
+        out.frameGpuMs.push_back(gpuMs);
+        out.frameCpuMs.push_back(cpuMs);
+        out.frameWallMs.push_back(wallMs);
       }
       ctx.collectGarbage();
       if (s.taa) {
@@ -509,6 +571,7 @@ struct Renderer::Impl {
     }
 
     out.scene = sceneStats();
+    out.shadowLayers = shadowLights();
     out.ldr = Image8::make(int(s.width), int(s.height));
     std::memcpy(out.ldr.rgba.data(), ldrReadback.mapped(), pixels * 4);
     out.hdr = ImageF::make(int(s.width), int(s.height));
@@ -521,7 +584,22 @@ struct Renderer::Impl {
         for (int c = 0; c < 4; ++c) img.rgba[i * 4 + c] = texel(data, format, i, c);
       out.aovs.emplace_back(name, std::move(img));
     }
-    summarisePasses(passOrder, passTimes, out);
+
+    const uint32_t lightsPerHit = manyLights ? 1u : gpu.lightCount;
+    const uint32_t bounces = specularBounces(s);
+    for (const std::string& name : passOrder) {
+      std::vector<double> v = passTimes[name];
+      std::sort(v.begin(), v.end());
+      PassStats ps{name, v[v.size() / 2], v.front(), v[std::min(v.size() - 1, size_t(std::ceil(0.95 * v.size())) - 1)],
+                   uint32_t(v.size())};
+      ps.samplesMs = passTimes[name];
+      RayCount rc = launchedRays(name, s.width, s.height, shadowLights(), lightsPerHit, bounces);
+      if ((name == "rt-ao" && !s.ao) || (name == "rt-indirect" && !indirectOn(s))) rc = {};  // the shader returns at once
+      ps.rays = rc.rays;
+      ps.raysExact = rc.exact;
+      if (name.rfind("raw-", 0) != 0) out.frameMedianMs += ps.medianMs;
+      out.passes.push_back(ps);
+    }
     return out;
   }
 };

@@ -31,6 +31,12 @@ const char* modeName(Mode m);
 struct RenderSettings {
   uint32_t width = 1280, height = 720;
   uint32_t frames = 16;  // frames rendered; a static camera's denoisers accumulate them all
+  // The first warmupFrames of `frames` are rendered but left out of the timing statistics (pipeline
+  // and cache warm-up, clocks ramping up); benchmarks set it, images are unaffected.
+  uint32_t warmupFrames = 0;
+  // Also trace each frame's primary and shadow rays with trivial shaders (passes "raw-gbuffer-traced",
+  // "raw-rt-shadows"), the device's raw rate for those rays; left out of the frame's GPU time.
+  bool rawRays = false;
   uint32_t seed = 0;
   Mode mode = Mode::Hybrid;
   Primary primary = Primary::Auto;
@@ -66,8 +72,10 @@ struct RenderSettings {
   float aoRadius = -1.0f;  // world units; <= 0: kAoRadiusFraction × the scene bounds' diagonal
   // One-bounce ray-traced indirect diffuse; unset: the scene's indirectByDefault.
   std::optional<bool> indirect;
-  // Path tracing (--mode pathtrace): path vertices after the camera ray (--max-depth); `frames` is
-  // the number of samples per pixel, one per frame.
+  // Surface interactions along a path after the camera ray (--max-depth). The path tracer's paths
+  // end after this many vertices (`frames` is then the samples per pixel, one per frame); the
+  // hybrid's reflection/refraction loop starts at the G-buffer surface and traces up to
+  // maxDepth − 1 more rays (at least 1, at most gpu::kMaxSpecularBounces).
   uint32_t maxDepth = 8;
   // Called after each frame with (frames done, frames in all), e.g. to show progress.
   std::function<void(uint32_t, uint32_t)> progress;
@@ -81,7 +89,22 @@ struct PassStats {
   std::string name;
   double medianMs = 0, minMs = 0, p95Ms = 0;
   uint32_t samples = 0;
+  std::vector<double> samplesMs;  // per measured frame, in frame order (for significance tests)
+  // Rays the pass launches per frame: launch size × traceRayEXT calls per invocation, an upper bound
+  // where an invocation may return early (background, back-facing light) or a path ends early;
+  // raysExact says when the figure is exact. 0 for passes that trace nothing. See launchedRays().
+  uint64_t rays = 0;
+  bool raysExact = false;
 };
+
+// Rays per frame of the pass named `pass` at this size: launch size × traces per invocation.
+// Exact only for the traced G-buffer (one primary ray per pixel); the others are upper bounds.
+struct RayCount {
+  uint64_t rays = 0;
+  bool exact = false;
+};
+RayCount launchedRays(const std::string& pass, uint32_t width, uint32_t height, uint32_t shadowLayers,
+                      uint32_t lightsPerHit, uint32_t maxDepth);
 
 // Names accepted by RenderSettings::aovs, in the order `--aov all` writes them.
 const std::vector<std::string>& aovNames();
@@ -95,11 +118,18 @@ struct RenderOutput {
   double rasterGBufferMs = -1, tracedGBufferMs = -1;  // measured by --primary auto, else -1
   std::vector<PassStats> passes;                      // GPU time per pass over all frames
   double frameMedianMs = 0;                           // sum of the passes' medians
+  // Per measured frame (after warm-up): GPU ms (sum of the passes), CPU ms recording and submitting
+  // the frame, and wall ms including the wait for the GPU.
+  std::vector<double> frameGpuMs, frameCpuMs, frameWallMs;
+  uint32_t shadowLayers = 0;  // lights with their own shadow layer (0: many-light mode)
   struct SceneStats {
     uint64_t triangles = 0, spheres = 0;
     uint64_t blasBytes = 0, blasCompactedBytes = 0, tlasBytes = 0;
     double uploadMs = 0, accelBuildMs = 0;  // CPU wall time, including waits for the GPU
     uint64_t deviceBytesUsed = 0, deviceBytesReserved = 0;
+    // deviceBytesUsed by rhi::MemoryCategory: images, device buffers, acceleration structures, host-visible.
+    uint64_t imageBytes = 0, bufferBytes = 0, accelBytes = 0, hostBytes = 0;
+    uint32_t lights = 0;
   } scene;
 };
 

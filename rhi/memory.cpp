@@ -64,11 +64,14 @@ VkDeviceMemory MemoryAllocator::allocateDeviceMemory(VkDeviceSize size, uint32_t
   return memory;
 }
 
-Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsage usage, bool linear) {
+Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsage usage, bool linear,
+                                     MemoryCategory category) {
   std::lock_guard lock(mutex_);
   uint32_t type = findMemoryType(req.memoryTypeBits, usage);
   Allocation a;
   a.size = req.size;
+  a.category = category;
+  stats_.categoryBytes[size_t(category)] += req.size;
   if (req.size >= kDedicatedThreshold) {
     a.memory = allocateDeviceMemory(req.size, type, &a.mapped);
     stats_.dedicatedCount++;
@@ -108,6 +111,7 @@ void MemoryAllocator::free(const Allocation& a) {
   if (!a.memory) return;
   std::lock_guard lock(mutex_);
   stats_.usedBytes -= a.size;
+  stats_.categoryBytes[size_t(a.category)] -= a.size;
   if (a.block < 0) {
     vkFreeMemory(ctx_.device(), a.memory, nullptr);
     stats_.reservedBytes -= a.size;

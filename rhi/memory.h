@@ -20,12 +20,22 @@ enum class MemoryUsage {
   Readback,  // host visible, preferably cached, read by the CPU
 };
 
+// What an allocation backs, for the per-category totals `rayster bench` reports.
+enum class MemoryCategory : uint8_t {
+  Image,   // render targets, textures, history
+  Buffer,  // device-local buffers: geometry, scene tables, SBT, scratch
+  Accel,   // acceleration-structure storage (BLAS, TLAS)
+  Host,    // host-visible buffers: staging uploads, constants, readback
+};
+inline constexpr size_t kMemoryCategories = 4;
+
 struct Allocation {
   VkDeviceMemory memory = VK_NULL_HANDLE;
   VkDeviceSize offset = 0;
   VkDeviceSize size = 0;
   void* mapped = nullptr;  // already offset; null unless host visible
   int32_t block = -1;      // -1: dedicated
+  MemoryCategory category = MemoryCategory::Buffer;
   explicit operator bool() const { return memory != VK_NULL_HANDLE; }
 };
 
@@ -34,6 +44,8 @@ struct MemoryStats {
   uint64_t reservedBytes = 0;  // allocated from the driver (blocks + dedicated)
   uint32_t blockCount = 0;
   uint32_t dedicatedCount = 0;
+  uint64_t categoryBytes[kMemoryCategories] = {};  // usedBytes split by MemoryCategory
+  uint64_t bytes(MemoryCategory c) const { return categoryBytes[size_t(c)]; }
 };
 
 class MemoryAllocator {
@@ -47,7 +59,8 @@ class MemoryAllocator {
   MemoryAllocator& operator=(const MemoryAllocator&) = delete;
 
   // linear: the resource is a buffer (or linear image); images and buffers never share a block.
-  Allocation allocate(const VkMemoryRequirements& req, MemoryUsage usage, bool linear);
+  Allocation allocate(const VkMemoryRequirements& req, MemoryUsage usage, bool linear,
+                      MemoryCategory category = MemoryCategory::Buffer);
   void free(const Allocation& allocation);
   MemoryStats stats() const;
   uint32_t findMemoryType(uint32_t typeBits, MemoryUsage usage) const;

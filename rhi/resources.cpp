@@ -17,7 +17,11 @@ Buffer::Buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, Memory
   VK_CHECK(vkCreateBuffer(ctx.device(), &ci, nullptr, &buffer_));
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(ctx.device(), buffer_, &req);
-  allocation_ = ctx.memory().allocate(req, memory, true);
+  const MemoryCategory category = memory != MemoryUsage::GpuOnly ? MemoryCategory::Host
+                                  : (usage & VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR)
+                                      ? MemoryCategory::Accel
+                                      : MemoryCategory::Buffer;
+  allocation_ = ctx.memory().allocate(req, memory, true, category);
   VK_CHECK(vkBindBufferMemory(ctx.device(), buffer_, allocation_.memory, allocation_.offset));
   VkBufferDeviceAddressInfo ai{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
   ai.buffer = buffer_;
@@ -81,7 +85,7 @@ Image::Image(Context& ctx, const ImageDesc& desc, const char* name) : ctx_(&ctx)
   VK_CHECK(vkCreateImage(ctx.device(), &ci, nullptr, &image_));
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(ctx.device(), image_, &req);
-  allocation_ = ctx.memory().allocate(req, MemoryUsage::GpuOnly, false);
+  allocation_ = ctx.memory().allocate(req, MemoryUsage::GpuOnly, false, MemoryCategory::Image);
   VK_CHECK(vkBindImageMemory(ctx.device(), image_, allocation_.memory, allocation_.offset));
   VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vi.image = image_;

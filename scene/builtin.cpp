@@ -33,12 +33,24 @@ Result<Scene> makeInstancesFromArgument(std::optional<std::string_view> argument
   return makeInstancesScene(count);
 }
 
+Result<Scene> makeLightsFromArgument(std::optional<std::string_view> argument) {
+  if (!argument) return makeLightsScene(kDefaultBuiltinLights);
+  uint32_t count = 0;
+  const char* end = argument->data() + argument->size();
+  const auto [ptr, ec] = std::from_chars(argument->data(), end, count);
+  if (ec != std::errc() || ptr != end || count == 0 || count > kMaxBuiltinLights)
+    return makeError(ExitCode::BadInput, "builtin:lights: count '{}' is not a number in 1..{}", *argument,
+                     kMaxBuiltinLights);
+  return makeLightsScene(count);
+}
+
 // The one list of built-in scenes: adding one here makes it loadable and listed in errors/--help.
 constexpr BuiltinEntry kBuiltins[] = {
     {"cornell", "cornell", false, [](std::optional<std::string_view>) -> Result<Scene> { return makeCornellBox(); }},
     {"whitted", "whitted", false, [](std::optional<std::string_view>) { return makeWhittedScene(); }},
     {"spheres", "spheres", false, [](std::optional<std::string_view>) -> Result<Scene> { return makeSpheresScene(); }},
     {"instances", "instances[:N]", true, &makeInstancesFromArgument},
+    {"lights", "lights[:N]", true, &makeLightsFromArgument},
 };
 
 std::string usageList() {

@@ -32,4 +32,10 @@ inline constexpr uint32_t kDefaultBuiltinInstances = 64;
 inline constexpr uint32_t kMaxBuiltinInstances = 1'000'000;  // ~100 MB of instances; TLAS-sized tests
 Result<Scene> makeInstancesScene(uint32_t count);
 
+// The 16-bunny grid lit by `count` point lights on a ring (no sun): the light-count sweep of
+// `rayster bench`; count in 1..kMaxBuiltinLights.
+inline constexpr uint32_t kDefaultBuiltinLights = 16;
+inline constexpr uint32_t kMaxBuiltinLights = 4096;
+Result<Scene> makeLightsScene(uint32_t count);
+
 }  // namespace rayster::scene

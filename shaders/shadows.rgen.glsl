@@ -15,35 +15,21 @@ layout(set = 0, binding = 4, r16f) uniform writeonly image2DArray outVisibility;
 
 layout(location = 0) rayPayloadEXT uint visible;
 
+#include "lib/shadow_ray.glsl"
+
 void main() {
   ivec2 px = ivec2(gl_LaunchIDEXT.xy);
   uint layer = gl_LaunchIDEXT.z;
-  float depth = texelFetch(depthTex, px, 0).r;
-  if (isBackground(depth)) {
+  vec3 origin, dir;
+  float tMax;
+  if (!shadowRay(px, layer, origin, dir, tMax)) {
     imageStore(outVisibility, ivec3(px, layer), vec4(0.0));
     return;
   }
-  vec2 uv = (vec2(px) + 0.5) / vec2(gl_LaunchSizeEXT.xy);
-  vec3 p = worldFromDepth(frame.worldFromClip, uv, depth);
-  vec4 n = texelFetch(normalTex, px, 0);
-  vec3 ng = octDecode(n.zw);
-  LightRecord light = Lights(frame.lights).l[layer];
-
-  uint rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kShadowStream ^ pcg(layer));
-  vec2 u = vec2(rnd(rng), rnd(rng));
-  float dist;
-  vec3 dir = sampleLightDirection(light, p, u, dist);
-  if (dot(dir, ng) <= 0.0) {
-    imageStore(outVisibility, ivec3(px, layer), vec4(0.0));
-    return;
-  }
-  // Offset along the geometric normal, by more than the error of P reconstructed from depth.
-  float eps = gbufferRayOffset(frame.worldFromClip, uv, depth, p);
-  vec3 origin = p + ng * eps;
   visible = 0u;
   // Opaque (no any-hit) only when no geometry needs alpha testing (TECHNIQUES.md §4).
   uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT |
                ((frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT);
-  traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, max(dist - eps, 0.0), 0);
+  traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, tMax, 0);
   imageStore(outVisibility, ivec3(px, layer), vec4(float(visible)));
 }

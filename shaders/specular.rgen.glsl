@@ -16,8 +16,8 @@
 
 // Ray-traced reflections and refractions (TECHNIQUES.md §10, §11): from every G-buffer pixel whose
 // material is a mirror, glossy (one GGX VNDF sample per pixel up to the glossy threshold) or glass,
-// a loop in raygen (no recursion) follows the specular path
-// up to kMaxDepth bounces: Fresnel between reflection and refraction (chosen stochastically, so the
+// a loop in raygen (no recursion) follows the specular path for up to frame.maxSpecularBounces
+// traced rays (RenderSettings::maxDepth): Fresnel between reflection and refraction (chosen stochastically, so the
 // estimate is unbiased and converges over frames), total internal reflection, η by side,
 // Beer–Lambert absorption inside volumes, thin walls. Every hit is shaded by shadeSurface(), the
 // lighting pass's own function, with shadow rays. Output: the specular radiance the lighting pass
@@ -32,8 +32,6 @@ layout(set = 0, binding = 7) uniform sampler2D emissiveTex;  // .a: the first su
 
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
 layout(location = 1) rayPayloadEXT uint visible;
-
-const uint kMaxDepth = 8u;
 
 uint baseRayFlags() { return (frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT; }
 
@@ -146,7 +144,7 @@ void main() {
   }
   origin += (origin - p) / max(length(origin - p), 1e-12) * 4.0 * depthError;
 
-  for (uint bounce = 1u; bounce < kMaxDepth; ++bounce) {
+  for (uint bounce = 1u; bounce <= min(frame.maxSpecularBounces, kMaxSpecularBounces); ++bounce) {
     payload.t = -1.0;
     traceRayEXT(tlas, baseRayFlags(), kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
     if (payload.t < 0.0) {

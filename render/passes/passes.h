@@ -51,6 +51,13 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in);
 
 // One visibility layer per shadowed light (R16F array), 1 sample per pixel.
 graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t lights);
+
+struct RawRayPipelines;
+// Raw-rate twins (RenderSettings::rawRays, passes "raw-gbuffer-traced" and "raw-rt-shadows"): the
+// rays of the traced G-buffer and of traceShadows() with trivial hit/miss shaders (raw_rays.cpp).
+void traceRawPrimary(graph::RenderGraph& graph, const FrameInputs& in, const RawRayPipelines& raw);
+void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t lights,
+                     const RawRayPipelines& raw);
 // Denoised by denoiseShadows() (render/passes/denoise.h).
 
 // Reflections and refractions of mirror, metal and glass pixels (RGBA16F radiance, 0 elsewhere).

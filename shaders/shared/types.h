@@ -27,6 +27,10 @@ RAYSTER_CONST uint kLightSpot = 1u;
 RAYSTER_CONST uint kLightDirectional = 2u;
 
 RAYSTER_CONST uint kMaxShadowLights = 8u;  // one visibility layer each
+// Specular rays a reflection/refraction path may trace after the G-buffer surface (the bounce loop
+// of specular.rgen); RenderSettings::maxDepth picks 1..this, default kDefaultSpecularBounces.
+RAYSTER_CONST uint kMaxSpecularBounces = 8u;
+RAYSTER_CONST uint kDefaultSpecularBounces = 7u;  // the loop's historical bound (8 path vertices)
 RAYSTER_CONST uint kDfgSize = 32u;         // split-sum DFG table, kDfgSize² texels (render/dfg.h)
 RAYSTER_CONST uint kBackgroundId = 0xFFFFFFFFu;
 RAYSTER_CONST uint kNoTexture = 0xFFFFFFFFu;
@@ -202,7 +206,7 @@ struct FrameConstants {
   uint environmentCdfWidth;    // cells of the environment CDF (0: no environment sampling)
   uint environmentCdfHeight;
   uint maxDepth;               // path vertices after the camera (--max-depth)
-  uint pad2;
+  uint maxSpecularBounces;     // specular.rgen traces at most this many rays per path (1..kMaxSpecularBounces)
 };
 
 #ifdef __cplusplus
@@ -226,6 +230,7 @@ static_assert(offsetof(FrameConstants, jitter) == 560);
 static_assert(offsetof(FrameConstants, mirrorRoughness) == 572);
 static_assert(sizeof(EmissiveTriangle) == 80);
 static_assert(offsetof(FrameConstants, emissiveTriangles) == 592);
+static_assert(offsetof(FrameConstants, maxSpecularBounces) == 628);
 static_assert(sizeof(FrameConstants) == 632);
 } // namespace rayster::gpu
 #endif

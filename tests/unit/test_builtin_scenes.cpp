@@ -64,12 +64,12 @@ TEST(BuiltinScenes, EveryOneValidatesWithCameraAndLight) {
 }
 
 TEST(BuiltinScenes, NamesListAllFour) {
-  EXPECT_EQ(builtinSceneNames(), (std::vector<std::string>{"cornell", "whitted", "spheres", "instances"}));
+  EXPECT_EQ(builtinSceneNames(), (std::vector<std::string>{"cornell", "whitted", "spheres", "instances", "lights"}));
   Result<Scene> unknown = makeBuiltinScene("builtin:sponza");
   ASSERT_FALSE(unknown.ok());
   EXPECT_EQ(unknown.error().code, ExitCode::BadInput);
   EXPECT_EQ(unknown.error().message,
-            "unknown built-in scene 'builtin:sponza' (available: cornell, whitted, spheres, instances[:N])");
+            "unknown built-in scene 'builtin:sponza' (available: cornell, whitted, spheres, instances[:N], lights[:N])");
   Result<Scene> parameter = makeBuiltinScene("cornell:3");
   ASSERT_FALSE(parameter.ok());
   EXPECT_EQ(parameter.error().code, ExitCode::BadInput);
@@ -222,3 +222,14 @@ TEST(BuiltinMeshAsset, EmbeddedMeshesParse) {
 
 }  // namespace
 }  // namespace rayster::scene
+
+TEST(BuiltinScenes, LightsSceneHasTheRequestedLights) {
+  for (uint32_t n : {1u, 8u, 256u}) {
+    auto scene = rayster::scene::makeBuiltinScene("builtin:lights:" + std::to_string(n));
+    ASSERT_TRUE(scene.ok());
+    EXPECT_EQ(scene->lights.size(), n);
+    EXPECT_FALSE(scene->cameras.empty());
+  }
+  EXPECT_FALSE(rayster::scene::makeBuiltinScene("lights:0").ok());
+  EXPECT_FALSE(rayster::scene::makeBuiltinScene("lights:x").ok());
+}

@@ -65,13 +65,13 @@ void expectBadInput(const Scene& scene, const std::string& fragment) {
 } // namespace
 
 TEST(Builtin, NamesAndPrefix) {
-  EXPECT_EQ(builtinSceneNames(), (std::vector<std::string>{"cornell", "whitted", "spheres", "instances"}));
+  EXPECT_EQ(builtinSceneNames(), (std::vector<std::string>{"cornell", "whitted", "spheres", "instances", "lights"}));
   EXPECT_TRUE(makeBuiltinScene("cornell").ok());
   EXPECT_TRUE(makeBuiltinScene("builtin:cornell").ok());
   auto unknown = makeBuiltinScene("sponza");
   ASSERT_FALSE(unknown.ok());
   EXPECT_EQ(unknown.error().code, ExitCode::BadInput);
-  EXPECT_EQ(unknown.error().message, "unknown built-in scene 'sponza' (available: cornell, whitted, spheres, instances[:N])");
+  EXPECT_EQ(unknown.error().message, "unknown built-in scene 'sponza' (available: cornell, whitted, spheres, instances[:N], lights[:N])");
 }
 
 TEST(Cornell, ValidatesWithOneLightAndCamera) {
