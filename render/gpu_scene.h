@@ -31,6 +31,7 @@ struct GpuScene {
     uint32_t geometry;
     uint32_t count;  // triangles: index count; spheres: sphere count (one box each)
     bool spheres;
+    bool castsShadows = true;  // false for a light's visible shape (no shadow-map draw)
   };
   std::vector<rhi::Buffer> vertexBuffers;  // one per primitive (AABBs for sphere sets)
   std::vector<rhi::Buffer> indexBuffers;   // one per primitive (SphereRecords for sphere sets)
@@ -42,6 +43,7 @@ struct GpuScene {
   GpuEnvironment environment;
   rhi::Image dfgTable;                // split-sum DFG (render/dfg.h), RG16F
   uint32_t dfgSlot = 0xFFFFFFFFu;     // its bindless slot
+  // Built only on devices with ray tracing (rhi::Capabilities::rayTracing()); empty otherwise.
   std::vector<rhi::AccelerationStructure> blases;
   rhi::Tlas tlas;
   std::vector<VkAccelerationStructureInstanceKHR> tlasInstances;  // as built; updated when instances move
