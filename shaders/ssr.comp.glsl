@@ -25,6 +25,7 @@ const int kSteps = 48;             // march samples along a reflected ray
 const int kRefineSteps = 6;        // binary search between the last two samples
 const float kReachFraction = 1.5;  // ray length as a fraction of the distance to the camera
 const float kEdgeFade = 0.08;      // uv margin over which hits fade to the environment at screen edges
+const float kMinPixels = 2.0;      // screen distance before a sample may hit
 const float kRefractionDepth = 0.15;  // refracted lookup offset, as a fraction of the camera distance
 
 float viewW(vec3 p) { return (frame.clipFromWorld * vec4(p, 1.0)).w; }
@@ -33,9 +34,13 @@ vec3 environmentSpecular(vec3 dir, float roughness) {
   return mix(environmentRadiance(dir), environmentIrradiance(dir) / kPi, roughness);
 }
 
-// Screen uv of the first depth-buffer surface along the ray, or (-1, -1).
+// Screen uv of the first depth-buffer surface along the ray, or (-1, -1). Surfaces within a pixel or
+// two of the start, or facing away from the ray (the start's own plane seen at a grazing angle
+// through the depth buffer's quantisation), are not hits.
 vec2 marchScreen(vec3 origin, vec3 dir, float reach, float jitter) {
   float tPrev = 0.0;
+  vec4 c0 = frame.clipFromWorld * vec4(origin, 1.0);
+  vec2 uv0 = c0.xy / c0.w * 0.5 + 0.5;
   for (int i = 1; i <= kSteps; ++i) {
     float f = (float(i) - jitter) / float(kSteps);
     float t = reach * f * f;
@@ -51,7 +56,9 @@ vec2 marchScreen(vec3 origin, vec3 dir, float reach, float jitter) {
     }
     float sceneW = viewW(worldFromDepth(frame.worldFromClip, uv, d));
     float thickness = max(2.0 * (t - tPrev), 0.02 * c.w);
-    if (c.w > sceneW && c.w - sceneW < thickness) {
+    bool nearStart = length((uv - uv0) * vec2(frame.size)) < kMinPixels;
+    bool facing = dot(octDecode(textureLod(normalTex, uv, 0.0).xy), dir) < 0.0;
+    if (!nearStart && facing && c.w > sceneW && c.w - sceneW < thickness) {
       float lo = tPrev, hi = t;
       for (int k = 0; k < kRefineSteps; ++k) {
         float mid = 0.5 * (lo + hi);
