@@ -11,7 +11,7 @@
 // distance, then a binary refinement) and read the lit image of a first lighting pass; rays that
 // leave the screen or pass behind everything see the environment (blurred with roughness).
 // Refraction is approximate: the lit image at a screen-space offset along the refracted direction,
-// or the environment where that pixel is glass itself.
+// stepping on while that pixel is glass itself, else the environment.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 1) uniform sampler2D depthTex;
 layout(set = 0, binding = 2) uniform sampler2D normalTex;
@@ -26,7 +26,8 @@ const int kRefineSteps = 6;        // binary search between the last two samples
 const float kReachFraction = 1.5;  // ray length as a fraction of the distance to the camera
 const float kEdgeFade = 0.08;      // uv margin over which hits fade to the environment at screen edges
 const float kMinPixels = 2.0;      // screen distance before a sample may hit
-const float kRefractionDepth = 0.15;  // refracted lookup offset, as a fraction of the camera distance
+const float kRefractionDepth = 0.05;  // refracted lookup step, as a fraction of the camera distance
+const int kRefractionSteps = 8;       // steps before the refracted lookup gives up for the environment
 
 float viewW(vec3 p) { return (frame.clipFromWorld * vec4(p, 1.0)).w; }
 
@@ -121,13 +122,17 @@ void main() {
     fresnel = 1.0;  // total internal reflection
     refr = vec3(0.0);
   } else {
+    // Step further along the refracted direction until the offset leaves the glass.
     refr = environmentRadiance(t);
-    vec4 c = frame.clipFromWorld * vec4(p + t * kRefractionDepth * camDist, 1.0);
-    vec2 u = c.xy / c.w * 0.5 + 0.5;
-    if (c.w > 0.0 && all(greaterThanEqual(u, vec2(0.0))) && all(lessThanEqual(u, vec2(1.0)))) {
+    for (int k = 1; k <= kRefractionSteps; ++k) {
+      vec4 c = frame.clipFromWorld * vec4(p + t * (kRefractionDepth * float(k) * camDist), 1.0);
+      vec2 u = c.xy / c.w * 0.5 + 0.5;
+      if (c.w <= 0.0 || any(lessThan(u, vec2(0.0))) || any(greaterThan(u, vec2(1.0)))) break;
       float d = textureLod(depthTex, u, 0.0).r;
-      bool glassThere = textureLod(materialTex, u, 0.0).b > 0.0;
-      if (!isBackground(d) && !glassThere) refr = textureLod(litTex, u, 0.0).rgb;
+      if (isBackground(d)) break;
+      if (textureLod(materialTex, u, 0.0).b > 0.0) continue;
+      refr = textureLod(litTex, u, 0.0).rgb;
+      break;
     }
   }
   vec3 tint = srgbToLinear(texelFetch(albedoTex, px, 0).rgb);
