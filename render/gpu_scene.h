@@ -22,6 +22,7 @@ namespace rayster::render {
 struct GpuEnvironment {
   uint32_t kind = 0;                 // gpu::kEnvironment*
   uint32_t slot = 0xFFFFFFFFu;       // bindless slot of the equirect map
+  uint32_t prefilteredSlot = 0xFFFFFFFFu;  // GGX-prefiltered levels (gpu::kPrefilteredLevels)
   std::array<glm::vec3, 9> irradianceSh{};  // cosine-convolved SH9 of the radiance, × intensity
 };
 
@@ -40,6 +41,7 @@ struct GpuScene {
   std::vector<rhi::Sampler> samplers;
   std::unique_ptr<rhi::BindlessTextures> bindless;
   rhi::Image environmentMap;
+  rhi::Image environmentPrefiltered;  // built once at upload; glossy environment light of the raster mode
   GpuEnvironment environment;
   rhi::Image dfgTable;                // split-sum DFG (render/dfg.h), RG16F
   uint32_t dfgSlot = 0xFFFFFFFFu;     // its bindless slot

@@ -193,6 +193,7 @@ struct Renderer::Impl {
     fc.environmentKind = gpu.environment.kind;
     fc.environment = glm::vec4(glm::vec3(env.intensity), env.rotation);
     fc.environmentSlot = gpu.environment.slot;
+    fc.prefilteredSlot = gpu.environment.prefilteredSlot;
     fc.skyZenith = env.zenith;
     fc.skyHorizon = env.horizon;
     fc.skyGround = env.ground;
@@ -202,7 +203,7 @@ struct Renderer::Impl {
     fc.glossyThreshold = s.glossyThreshold;
     fc.aoRadius = aoRadius(s);
     // The raster mode has neither AO nor indirect light: ambient and the SH environment stand in.
-    fc.effectFlags = s.mode == Mode::Raster ? 0u
+    fc.effectFlags = s.mode == Mode::Raster ? gpu::kEffectPrefilteredEnv
                                             : (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u);
     fc.dfgSlot = gpu.dfgSlot;
     std::memcpy(constants.mapped(), &fc, sizeof(fc));

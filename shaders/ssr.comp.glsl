@@ -31,10 +31,6 @@ const int kRefractionSteps = 8;       // steps before the refracted lookup gives
 
 float viewW(vec3 p) { return (frame.clipFromWorld * vec4(p, 1.0)).w; }
 
-vec3 environmentSpecular(vec3 dir, float roughness) {
-  return mix(environmentRadiance(dir), environmentIrradiance(dir) / kPi, roughness);
-}
-
 // Screen uv of the first depth-buffer surface along the ray, or (-1, -1). Surfaces within a pixel or
 // two of the start, or facing away from the ray (the start's own plane seen at a grazing angle
 // through the depth buffer's quantisation), are not hits.
