@@ -33,6 +33,10 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   shadowMap.bindings = {{0, kUniform}};
   shadowMap.pushConstantBytes = 72;  // clipFromWorld, instance, geometry
   p.shadowMap = rhi::createGraphicsPipeline(ctx, shadowMap);
+  shadowMap.vertex = "shadow_sphere.vert";
+  shadowMap.fragment = "shadow_sphere.frag";
+  shadowMap.pushConstantBytes = 88;  // clipFromWorld, instance, geometry, light position or direction
+  p.shadowSpheres = rhi::createGraphicsPipeline(ctx, shadowMap);
   const rhi::Binding resolve[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kUniform}, {5, kStorage}};
   p.shadowResolve = rhi::createComputePipeline(ctx, "shadow_resolve.comp", resolve, 0);
   const rhi::Binding ssr[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled},

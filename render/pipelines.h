@@ -35,6 +35,7 @@ struct Pipelines {
   rhi::Pipeline lighting;
   // Raster mode (render/raster_frame.h): depth-only shadow maps, their resolve, screen-space specular.
   rhi::Pipeline shadowMap;
+  rhi::Pipeline shadowSpheres;  // analytic spheres: bounding cubes, exact depth in the fragment shader
   rhi::Pipeline shadowResolve;
   rhi::Pipeline ssr;
   rhi::Pipeline rasterConstants;

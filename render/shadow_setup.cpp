@@ -71,6 +71,7 @@ ShadowAtlas planShadowAtlas(const scene::Scene& scene, const scene::Camera& cam,
   const float tanY = std::tan(0.5f * cam.yFov), tanX = tanY * aspect;
 
   std::vector<gpu::ShadowView> views;
+  std::vector<glm::vec4>& rays = atlas.lightRays;
   const uint32_t count = std::min<uint32_t>(uint32_t(scene.lights.size()), std::min(shadowLights, gpu::kMaxShadowLights));
   for (uint32_t li = 0; li < count; ++li) {
     const scene::Light& light = scene.lights[li];
@@ -118,6 +119,7 @@ ShadowAtlas planShadowAtlas(const scene::Scene& scene, const scene::Camera& cam,
         v.texelWorld = texel;
         v.perspective = 0;
         views.push_back(v);
+        rays.push_back(glm::vec4(dir, 0.0f));
         start = ends[c];
       }
     } else {
@@ -130,13 +132,16 @@ ShadowAtlas planShadowAtlas(const scene::Scene& scene, const scene::Camera& cam,
         const glm::vec3 dir = glm::normalize(light.direction);
         const float fov = std::min(2.0f * light.outerConeAngle + 0.1f, glm::radians(170.0f));
         views.push_back(perspectiveView(light.position, dir, upFor(dir), fov, nearPlane, farPlane));
+        rays.push_back(glm::vec4(light.position, 1.0f));
       } else {
         sl.kind = gpu::kShadowCube;
         // Cube face order and up axes of the Vulkan cube-map convention.
         const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
         const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
-        for (int f = 0; f < 6; ++f)
+        for (int f = 0; f < 6; ++f) {
           views.push_back(perspectiveView(light.position, dirs[f], ups[f], glm::radians(90.0f), nearPlane, farPlane));
+          rays.push_back(glm::vec4(light.position, 1.0f));
+        }
       }
     }
   }

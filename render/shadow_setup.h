@@ -25,6 +25,9 @@ struct ShadowAtlas {
     uint32_t x, y;
   };
   std::vector<Tile> tiles;
+  // Per view, where its rays come from: xyz the light's position (w = 1, perspective) or the
+  // direction light travels (w = 0, orthographic); sphere impostors intersect along them.
+  std::vector<glm::vec4> lightRays;
 };
 
 // Lays out the shadow views of the first `shadowLights` lights for this camera.

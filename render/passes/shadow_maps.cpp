@@ -27,26 +27,30 @@ graph::ImageHandle renderShadowAtlas(graph::RenderGraph& graph, const FrameInput
         ri.layerCount = 1;
         ri.pDepthAttachment = &da;
         vkCmdBeginRendering(pc.cmd, &ri);
-        const rhi::Pipeline& pipe = in.pipelines.shadowMap;
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.handle());
-        rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
-        for (uint32_t v = 0; v < atlas.setup.viewCount; ++v) {
-          const ShadowAtlas::Tile& t = atlas.tiles[v];
-          VkViewport vp{float(t.x), float(t.y), float(atlas.tileSize), float(atlas.tileSize), 0, 1};
-          VkRect2D scissor{{int32_t(t.x), int32_t(t.y)}, {atlas.tileSize, atlas.tileSize}};
-          vkCmdSetViewport(pc.cmd, 0, 1, &vp);
-          vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
-          struct {
-            glm::mat4 clipFromWorld;
-            uint32_t instance, geometry;
-          } push{atlas.setup.views[v].clipFromWorld, 0, 0};
-          for (const GpuScene::Draw& d : in.scene.draws) {
-            // Analytic spheres cast no shadow-map shadows yet; lights' visible shapes never do.
-            if (d.spheres || !d.castsShadows) continue;
-            push.instance = d.instance;
-            push.geometry = d.geometry;
-            vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), &push);
-            vkCmdDraw(pc.cmd, d.count, 1, 0, 0);
+        // Triangles, then analytic spheres (bounding cubes intersected exactly along the light's rays).
+        for (bool spheres : {false, true}) {
+          const rhi::Pipeline& pipe = spheres ? in.pipelines.shadowSpheres : in.pipelines.shadowMap;
+          vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.handle());
+          rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
+          for (uint32_t v = 0; v < atlas.setup.viewCount; ++v) {
+            const ShadowAtlas::Tile& t = atlas.tiles[v];
+            VkViewport vp{float(t.x), float(t.y), float(atlas.tileSize), float(atlas.tileSize), 0, 1};
+            VkRect2D scissor{{int32_t(t.x), int32_t(t.y)}, {atlas.tileSize, atlas.tileSize}};
+            vkCmdSetViewport(pc.cmd, 0, 1, &vp);
+            vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
+            struct {
+              glm::mat4 clipFromWorld;
+              uint32_t instance, geometry;
+              glm::vec4 light;
+            } push{atlas.setup.views[v].clipFromWorld, 0, 0, atlas.lightRays[v]};
+            const uint32_t bytes = spheres ? sizeof(push) : 72;
+            for (const GpuScene::Draw& d : in.scene.draws) {
+              if (d.spheres != spheres || !d.castsShadows) continue;  // lights' visible shapes cast nothing
+              push.instance = d.instance;
+              push.geometry = d.geometry;
+              vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, bytes, &push);
+              vkCmdDraw(pc.cmd, spheres ? 36 : d.count, spheres ? d.count : 1, 0, 0);
+            }
           }
         }
         vkCmdEndRendering(pc.cmd);

@@ -55,6 +55,13 @@ TEST(RasterMode, WhittedAndSpheresRender) {
   Image8 spheres = renderOk(dir, "spheres", "builtin:spheres --mode raster --frames 2", 96, 72);
   EXPECT_FALSE(whitted.rgba.empty());
   EXPECT_FALSE(spheres.rgba.empty());
+  // The analytic spheres cast shadow-map shadows (their impostors write exact depth).
+  Rendered r = renderHdr(dir, "spheres-shadow", "builtin:spheres", 96, 72, 1, "shadow-raw", "--mode raster");
+  ASSERT_TRUE(r.aovs.count("shadow-raw"));
+  int shadowed = 0;
+  for (int y = 0; y < 72; ++y)
+    for (int x = 0; x < 96; ++x) shadowed += r.aovs.at("shadow-raw").pixel(x, y)[0] < 0.5f;
+  EXPECT_GT(shadowed, 96 * 72 / 50) << "the spheres should shadow the ground";
 }
 
 // A pixel of `a` disagrees with `b` unless `b` has the same value within `radius` pixels; only
