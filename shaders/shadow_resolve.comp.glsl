@@ -5,8 +5,11 @@
 
 // Shadow-map resolve (raster mode): per shadowed light, the visibility of every G-buffer pixel
 // from the light's shadow map, written where the ray-traced shadows would be (one R16F layer per
-// light), so the lighting pass stays unchanged. Percentage-closer filtering over a rotated Poisson
-// disk softens edges; a normal offset and a slope-scaled bias keep surfaces from shadowing themselves.
+// light), so the lighting pass stays unchanged. Soft edges: percentage-closer soft shadows (Fernando
+// 2005) in a light form: a blocker search gives the mean occluder depth, the light's size (sphere
+// radius, the sun's angular radius) the penumbra width, and percentage-closer filtering over a
+// rotated Poisson disk of that width (at least pcfRadius texels) the visibility. A normal offset and
+// a slope-scaled bias keep surfaces from shadowing themselves.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 1) uniform sampler2D depthTex;
 layout(set = 0, binding = 2) uniform sampler2D normalTex;
@@ -19,6 +22,8 @@ const float kBiasConstant = 1.0;
 const float kBiasSlope = 1.5;
 const float kNormalOffset = 1.5;
 const float kMaxSlope = 6.0;
+const float kSearchTexels = 8.0;      // blocker search radius
+const float kMaxFilterTexels = 12.0;  // widest PCF kernel
 
 const vec2 kPoisson[16] = vec2[16](
     vec2(-0.94201624, -0.39906216), vec2(0.94558609, -0.76890725), vec2(-0.09418410, -0.92938870),
@@ -33,8 +38,9 @@ float linearDepth(ShadowView v, float d) {
   return v.farPlane - d * (v.farPlane - v.nearPlane);
 }
 
-// Visibility of p from one view; -1 when p lies outside the view's tile.
-float sampleView(ShadowView v, vec3 p, vec3 ng, vec3 l, float angle) {
+// Visibility of p from one view; -1 when p lies outside the view's tile. `lightSize`: the sphere
+// light's radius (perspective views) or the tangent of the sun's angular radius (orthographic).
+float sampleView(ShadowView v, vec3 p, vec3 ng, vec3 l, float angle, float lightSize) {
   float nl = clamp(dot(ng, l), 0.0, 1.0);
   vec4 c0 = v.clipFromWorld * vec4(p, 1.0);
   float texel = v.texelWorld * (v.perspective != 0u ? max(c0.w, 0.0) : 1.0);
@@ -46,15 +52,32 @@ float sampleView(ShadowView v, vec3 p, vec3 ng, vec3 l, float angle) {
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z < 0.0 || ndc.z > 1.0) return -1.0;
   float z = linearDepth(v, ndc.z);
   float slope = min(sqrt(1.0 - nl * nl) / max(nl, 1e-3), kMaxSlope);
-  float bias = texel * (kBiasConstant + kBiasSlope * shadow.pcfRadius * slope);
   vec2 atlasSize = 1.0 / shadow.atlasTexel;
   vec2 tileMin = v.tile.xy * atlasSize, tileMax = (v.tile.xy + v.tile.zw) * atlasSize - 1.0;
   vec2 centre = (v.tile.xy + uv * v.tile.zw) * atlasSize;
   float c2 = cos(angle), s2 = sin(angle);
   mat2 rot = mat2(c2, s2, -s2, c2);
+  float radius = shadow.pcfRadius;
+  if (lightSize > 0.0) {
+    float searchBias = texel * (kBiasConstant + kBiasSlope * kSearchTexels * slope);
+    float blockerSum = 0.0, blockers = 0.0;
+    for (int k = 0; k < 16; ++k) {
+      vec2 t = clamp(centre + rot * kPoisson[k] * kSearchTexels, tileMin, tileMax);
+      float occluder = linearDepth(v, texelFetch(atlasTex, ivec2(t), 0).r);
+      if (z - searchBias > occluder) {
+        blockerSum += occluder;
+        blockers += 1.0;
+      }
+    }
+    if (blockers == 0.0) return 1.0;
+    float zBlocker = blockerSum / blockers;
+    float penumbra = v.perspective != 0u ? lightSize * (z - zBlocker) / max(zBlocker, 1e-4) : lightSize * (z - zBlocker);
+    radius = clamp(penumbra / texel, shadow.pcfRadius, kMaxFilterTexels);  // penumbra half-width
+  }
+  float bias = texel * (kBiasConstant + kBiasSlope * radius * slope);
   float lit = 0.0;
   for (int k = 0; k < 16; ++k) {
-    vec2 t = clamp(centre + rot * kPoisson[k] * shadow.pcfRadius, tileMin, tileMax);
+    vec2 t = clamp(centre + rot * kPoisson[k] * radius, tileMin, tileMax);
     float occluder = linearDepth(v, texelFetch(atlasTex, ivec2(t), 0).r);
     lit += z - bias <= occluder ? 1.0 : 0.0;
   }
@@ -77,14 +100,14 @@ float lightVisibility(uint i, vec3 p, vec3 ng, float angle) {
     float viewDepth = dot(p - frame.cameraPosition.xyz, shadow.cameraForward.xyz);
     for (uint c = 0u; c < kShadowCascades; ++c) {
       if (viewDepth > shadow.cascadeEnds[c] && c + 1u < kShadowCascades) continue;
-      float vis = sampleView(shadow.views[sl.firstView + c], p, ng, l, angle);
+      float vis = sampleView(shadow.views[sl.firstView + c], p, ng, l, angle, tan(light.angularRadius));
       if (vis >= 0.0) return vis;
     }
     return 1.0;
   }
   vec3 l = normalize(light.position - p);
   uint view = sl.firstView + (sl.kind == kShadowCube ? cubeFace(p - light.position) : 0u);
-  float vis = sampleView(shadow.views[view], p, ng, l, angle);
+  float vis = sampleView(shadow.views[view], p, ng, l, angle, light.radius);
   return vis < 0.0 ? (sl.kind == kShadowSpot ? 0.0 : 1.0) : vis;
 }
 

@@ -3,6 +3,7 @@
 // the fallback on a device without ray tracing (RAYSTER_DISABLE_RT=1 hides it on lavapipe).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include <gtest/gtest.h>
@@ -115,6 +116,32 @@ TEST(RasterMode, SunCascadeMatchesTracedShadow) {
   EXPECT_NEAR(shadowedA, shadowedB, 0.15 * shadowedB);
   EXPECT_LE(mismatches(a, b, 2, onFloor), 3);
   EXPECT_LE(mismatches(b, a, 2, onFloor), 3);
+}
+
+// Soft edges: a sphere light's shadow has a penumbra that grows with the light's radius
+// (percentage-closer soft shadows); a hard point light's edge is only the PCF kernel wide.
+TEST(RasterMode, PenumbraGrowsWithLightRadius) {
+  auto dir = testDir();
+  SceneSpec s;
+  s.models.push_back(floorAt0(6.0f));
+  s.models.push_back({"blocker", unitQuad(), {glm::vec3(0.5f)}, glm::vec3(1.2f), glm::vec3(-90, 0, 0), glm::vec3(0, 1, 0)});
+  s.camera = {{0, 6, 0.01f}, {0, 0, 0}, 50};
+  const int size = 64;
+  int penumbra[2] = {};
+  for (int i = 0; i < 2; ++i) {
+    const float radius = i == 0 ? 0.0f : 0.4f;
+    s.lights = {fmt::format(R"({{"type": "point", "position": [0.3, 2.5, 0.2], "intensity": 10, "radius": {}}})", radius)};
+    const std::string name = "penumbra" + std::to_string(i);
+    Rendered r = renderHdr(dir, name, writeScene(dir, name, s), size, size, 1, "shadow-raw", "--mode raster");
+    ASSERT_TRUE(r.aovs.count("shadow-raw"));
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        const float v = r.aovs.at("shadow-raw").pixel(x, y)[0];
+        penumbra[i] += v > 0.1f && v < 0.9f;
+      }
+  }
+  EXPECT_GT(penumbra[1], 2 * penumbra[0] + 20) << "hard " << penumbra[0] << " px, soft " << penumbra[1] << " px";
+  std::printf("[raster] penumbra pixels: hard light %d, sphere light %d\n", penumbra[0], penumbra[1]);
 }
 
 // A point light in the middle of a closed room with a small cube on each axis: each of the six
