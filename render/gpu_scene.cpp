@@ -168,7 +168,10 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   gs.lights = tableBuffer(ctx, lightRows, "lights");
   gs.uploadMs = msSince(t0);
 
-  if (!ctx.caps().rayTracing()) return gs;  // the raster mode needs no acceleration structures
+  if (!ctx.caps().rayTracing()) {  // the raster mode needs no acceleration structures
+    gs.tlasInstances = std::move(tlasInstances);  // animation still poses them (never built)
+    return gs;
+  }
   auto t1 = Clock::now();
   gs.blases = rhi::buildBlases(ctx, blasInputs, &gs.accelStats);
   for (auto& ti : tlasInstances) ti.accelerationStructureReference = gs.blases[ti.accelerationStructureReference].address();

@@ -287,6 +287,32 @@ TEST(RasterMode, FallbackWithoutRayTracing) {
   EXPECT_FALSE(rejectEmpty(*img, 64, 48).has_value());
 }
 
+// Animation on a device without ray tracing (no TLAS to refit): a played frame's G-buffer and
+// shadow maps match the paused pose at the same time.
+TEST(RasterMode, AnimationWithoutRayTracingMatchesThePausedPose) {
+  auto dir = testDir();
+  const std::string scene = writeAnimatedGltf(dir).string();
+  auto render = [&](const std::string& name, const std::string& args) {
+    RunResult r = runRayster("render " + scene + " --mode raster --taa off --size 96x72 --aov albedo,shadow-raw " +
+                                 args + " -o " + (dir / (name + ".png")).string(),
+                             "RAYSTER_DISABLE_RT=1");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+  };
+  render("played", "--frames 2 --path-fps 1");
+  // Two frames too, so the last one has the same frame index (the PCF disk turns per frame).
+  render("paused", "--frames 2 --time 1 --pause");
+  for (const char* aov : {"albedo", "shadow-raw"}) {
+    auto a = readExr(dir / (std::string("played.") + aov + ".exr"));
+    auto b = readExr(dir / (std::string("paused.") + aov + ".exr"));
+    ASSERT_TRUE(a.ok() && b.ok()) << aov;
+    EXPECT_FALSE(rejectEmpty(*a, 96, 72).has_value()) << aov;
+    ASSERT_EQ(a->rgba.size(), b->rgba.size());
+    size_t differ = 0;
+    for (size_t i = 0; i < a->rgba.size(); ++i) differ += std::abs(a->rgba[i] - b->rgba[i]) > 1e-3f;
+    EXPECT_EQ(differ, 0u) << aov << ": " << differ << " channel values differ";
+  }
+}
+
 TEST(RasterMode, RequireRtExitsWithMissingCapability) {
   auto dir = testDir();
   const auto out = dir / "none.png";
