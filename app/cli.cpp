@@ -20,7 +20,7 @@ namespace {
 constexpr const char* kExitCodes =
     "Exit codes:\n"
     "  0 ok, 1 other failure (or validation errors with --validation), 2 bad arguments,\n"
-    "  3 missing or invalid input file, 4 no Vulkan device, 5 missing capability (ray tracing),\n"
+    "  3 missing or invalid input file, 4 no Vulkan device, 5 missing capability (ray tracing with --require-rt),\n"
     "  6 device lost, 7 out of memory, 8 output could not be written, 9 comparison over budget";
 
 bool parseSize(const std::string& text, uint32_t& w, uint32_t& h) {
@@ -69,6 +69,9 @@ int run(int argc, char** argv) {
                      "hybrid (raster/traced G-buffer + ray-traced effects), pathtrace (the reference) or raster "
                      "(no ray tracing)")
       ->check(CLI::IsMember({"hybrid", "pathtrace", "raster"}));
+  render->add_flag("--require-rt", ro.requireRt,
+                   "Exit with code 5 on a device without ray-tracing pipelines instead of rendering with "
+                   "--mode raster (the default fallback, announced in one line)");
   render->add_option("--primary", primary, "G-buffer producer: raster, rt (traced primary rays) or auto")
       ->check(CLI::IsMember({"raster", "rt", "auto"}));
   render->add_option("--exposure", ro.settings.exposureEv, "Exposure in EV stops (default 0)");

@@ -116,8 +116,14 @@ int renderCommand(const RenderOptions& o) {
   log::info("loaded {} ({} triangles, {} instances) in {:.0f} ms", o.scene, scene->triangleCount(),
             scene->instances.size(),
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count());
-  auto ctx = rhi::Context::create({o.validation, true, o.device, o.debugLabels});
+  auto ctx = rhi::Context::create({o.validation, o.requireRt, o.device, o.debugLabels});
   if (!ctx) return fail(ctx.error());
+  render::RenderSettings settings = o.settings;
+  // Without ray-tracing pipelines every mode falls back to rasterisation, said in one line.
+  if (settings.mode != render::Mode::Raster && !(*ctx)->caps().rayTracing()) {
+    log::info("device {} has no ray-tracing pipelines: rendering with --mode raster", (*ctx)->info().name);
+    settings.mode = render::Mode::Raster;
+  }
   log::debug("device: {} ({}), driver {}", (*ctx)->info().name, (*ctx)->info().typeName(), (*ctx)->info().driverInfo);
 
   int code = 0;
@@ -125,7 +131,6 @@ int renderCommand(const RenderOptions& o) {
     auto renderer = render::Renderer::create(**ctx, *scene);
     if (!renderer) return fail(renderer.error());
     auto t0 = std::chrono::steady_clock::now();
-    render::RenderSettings settings = o.settings;
     settings.aovs = *aovs;
     // Long renders show progress on a terminal; logs and pipes stay clean.
     if (isatty(STDERR_FILENO) && settings.frames > 1)
@@ -192,7 +197,7 @@ int infoCommand() {
                   c.maxRayRecursionDepth);
     std::printf("  usable by rayster: %s\n", !d.unsuitableReason.empty() ? d.unsuitableReason.c_str()
                                            : c.rayTracing()            ? "yes"
-                                                                       : "no ray tracing");
+                                                                       : "raster mode only (no ray tracing)");
   }
   return 0;
 }

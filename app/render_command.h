@@ -13,6 +13,7 @@ struct RenderOptions {
   std::string aovs;  // comma-separated names, or "all"
   bool printTimings = false;
   bool validation = false;
+  bool requireRt = false;  // --require-rt: exit MissingCapability instead of falling back to raster
   bool debugLabels = true;
   std::string device;
   render::RenderSettings settings;

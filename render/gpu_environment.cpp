@@ -86,6 +86,81 @@ std::vector<float> environmentCdf(uint32_t w, uint32_t h, F radiance) {
   return out;
 }
 
+// The environment (without its intensity) on an equirect grid of w × w/2 texel centres: the map
+// box-filtered down, or the sky evaluated.
+std::vector<glm::vec3> environmentGrid(const scene::Environment& env, uint32_t w) {
+  const uint32_t h = w / 2;
+  std::vector<glm::vec3> grid(size_t(w) * h, glm::vec3(0.0f));
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      glm::vec3& out = grid[size_t(y) * w + x];
+      if (env.kind == scene::Environment::Kind::Sky) {
+        out = skyRadiance(env, equirectDirection((x + 0.5f) / w, (y + 0.5f) / h));
+        continue;
+      }
+      const uint32_t x0 = x * env.width / w, x1 = std::max(x0 + 1, (x + 1) * env.width / w);
+      const uint32_t y0 = y * env.height / h, y1 = std::max(y0 + 1, (y + 1) * env.height / h);
+      for (uint32_t sy = y0; sy < y1; ++sy)
+        for (uint32_t sx = x0; sx < x1; ++sx) {
+          const size_t i = (size_t(sy) * env.width + sx) * 3;
+          out += glm::vec3(env.rgb[i], env.rgb[i + 1], env.rgb[i + 2]);
+        }
+      out /= float((x1 - x0) * (y1 - y0));
+    }
+  return grid;
+}
+
+// GGX-prefiltered environment (split sum, Karis 2013, with n = v = the lookup direction): level k
+// of gpu::kPrefilteredLevels is roughness k/N, each a kPrefilteredWidth-wide equirect, stacked
+// vertically. Brute-force quadrature over a coarse grid: the smooth lobes need no more, and the
+// narrow ones blend with the exact environment (roughness 0) in the shader.
+std::vector<uint16_t> prefilterEnvironment(const scene::Environment& env) {
+  const uint32_t w = gpu::kPrefilteredWidth, h = w / 2, levels = gpu::kPrefilteredLevels;
+  struct Source {
+    std::vector<glm::vec3> radiance, dir;
+    std::vector<float> dOmega;
+  };
+  auto makeSource = [&](uint32_t sw) {
+    Source s;
+    s.radiance = environmentGrid(env, sw);
+    const uint32_t sh = sw / 2;
+    for (uint32_t y = 0; y < sh; ++y)
+      for (uint32_t x = 0; x < sw; ++x) {
+        const float u = (x + 0.5f) / sw, v = (y + 0.5f) / sh;
+        s.dir.push_back(equirectDirection(u, v));
+        s.dOmega.push_back((2.0f * kPi / sw) * (kPi / sh) * std::sin(v * kPi));
+      }
+    return s;
+  };
+  // Rough lobes are wide: a coarser source integrates them as well, four times faster.
+  const Source fine = makeSource(w), coarse = makeSource(w / 2);
+  std::vector<uint16_t> halves(size_t(w) * h * levels * 4);
+  for (uint32_t level = 1; level <= levels; ++level) {
+    const float roughness = float(level) / float(levels), a2 = std::pow(roughness, 4.0f);
+    const Source& src = level <= 2 ? fine : coarse;
+    for (uint32_t y = 0; y < h; ++y)
+      for (uint32_t x = 0; x < w; ++x) {
+        const glm::vec3 r = equirectDirection((x + 0.5f) / w, (y + 0.5f) / h);
+        glm::vec3 sum(0.0f);
+        float weightSum = 0.0f;
+        for (size_t i = 0; i < src.dir.size(); ++i) {
+          const float nl = glm::dot(r, src.dir[i]);
+          if (nl <= 0.0f) continue;
+          const float nh2 = 0.5f * (1.0f + nl);  // (n·h)² with h halfway between n and l
+          const float denom = nh2 * (a2 - 1.0f) + 1.0f;
+          const float weight = a2 / (denom * denom) * nl * src.dOmega[i];
+          sum += src.radiance[i] * weight;
+          weightSum += weight;
+        }
+        const glm::vec3 value = weightSum > 0.0f ? sum / weightSum : glm::vec3(0.0f);
+        const size_t o = ((size_t(level - 1) * h + y) * w + x) * 4;
+        for (int c = 0; c < 3; ++c) halves[o + c] = floatToHalf(std::min(value[c], 65000.0f));
+        halves[o + 3] = floatToHalf(1.0f);
+      }
+  }
+  return halves;
+}
+
 } // namespace
 
 void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs) {
@@ -159,6 +234,16 @@ void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& g
   }
   gs.environmentCdf =
       rhi::createBufferWithData(ctx, std::as_bytes(std::span(cdf)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "environment-cdf");
+  if (out.kind == gpu::kEnvironmentBlack) return;
+  const std::vector<uint16_t> levels = prefilterEnvironment(env);
+  gs.environmentPrefiltered =
+      rhi::uploadImage(ctx, {VK_FORMAT_R16G16B16A16_SFLOAT, gpu::kPrefilteredWidth,
+                             gpu::kPrefilteredWidth / 2 * gpu::kPrefilteredLevels, 1, 0},
+                       std::as_bytes(std::span(levels)), false, "environment-prefiltered");
+  // Longitude wraps; the shader keeps latitude inside each level.
+  gs.samplers.emplace_back(ctx, VK_FILTER_LINEAR, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT,
+                           VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false);
+  out.prefilteredSlot = gs.bindless->add(gs.environmentPrefiltered.view(), gs.samplers.back().handle());
 }
 
 void uploadDfgTable(rhi::Context& ctx, GpuScene& gs) {

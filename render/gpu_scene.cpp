@@ -16,8 +16,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-constexpr VkBufferUsageFlags kGeometryUsage =
-    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
+// Geometry feeds BLAS builds only where ray tracing exists: the usage bit needs the extension.
+VkBufferUsageFlags geometryUsage(const rhi::Context& ctx) {
+  return VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+         (ctx.caps().rayTracing() ? VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR : 0);
+}
 
 template <class T>
 rhi::Buffer tableBuffer(rhi::Context& ctx, const std::vector<T>& rows, const char* name) {
@@ -57,9 +60,9 @@ void addTriangles(rhi::Context& ctx, const scene::Scene& scene, const scene::Pri
     vertices[i].uv1 = prim.uvs1.empty() ? vertices[i].uv0 : prim.uvs1[i];
   }
   const rhi::Buffer& vb = gs.vertexBuffers.emplace_back(
-      rhi::createBufferWithData(ctx, std::as_bytes(std::span(vertices)), kGeometryUsage, "vertices"));
+      rhi::createBufferWithData(ctx, std::as_bytes(std::span(vertices)), geometryUsage(ctx), "vertices"));
   const rhi::Buffer& ib = gs.indexBuffers.emplace_back(
-      rhi::createBufferWithData(ctx, std::as_bytes(std::span(prim.indices)), kGeometryUsage, "indices"));
+      rhi::createBufferWithData(ctx, std::as_bytes(std::span(prim.indices)), geometryUsage(ctx), "indices"));
   rows.push_back({vb.address(), ib.address(), prim.material, uint32_t(vertices.size()),
                   uint32_t(prim.indices.size()), gpu::kGeometryTriangles});
   blas.push_back({0, 0, vb.address(), sizeof(gpu::Vertex), uint32_t(vertices.size()), ib.address(),
@@ -79,9 +82,9 @@ void addSpheres(rhi::Context& ctx, const scene::Scene& scene, const std::vector<
     opaque = opaque && !alphaTested(scene, s.material);
   }
   const rhi::Buffer& ab = gs.vertexBuffers.emplace_back(
-      rhi::createBufferWithData(ctx, std::as_bytes(std::span(boxes)), kGeometryUsage, "sphere-aabbs"));
+      rhi::createBufferWithData(ctx, std::as_bytes(std::span(boxes)), geometryUsage(ctx), "sphere-aabbs"));
   const rhi::Buffer& sb = gs.indexBuffers.emplace_back(
-      rhi::createBufferWithData(ctx, std::as_bytes(std::span(records)), kGeometryUsage, "spheres"));
+      rhi::createBufferWithData(ctx, std::as_bytes(std::span(records)), geometryUsage(ctx), "spheres"));
   rows.push_back({sb.address(), ab.address(), records.front().material, uint32_t(records.size()), 0,
                   gpu::kGeometrySpheres});
   blas.push_back({uint32_t(boxes.size()), ab.address(), 0, 0, 0, 0, 0, opaque});
@@ -126,10 +129,11 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     instanceRows.push_back({inst.worldFromObject, glm::inverseTranspose(inst.worldFromObject),
                             meshFirstGeometry[inst.mesh], mask, 0, 0, inst.worldFromObject});
     for (uint32_t p = 0; p < mesh.primitives.size(); ++p)
-      gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + p, uint32_t(mesh.primitives[p].indices.size()), false});
+      gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + p, uint32_t(mesh.primitives[p].indices.size()), false,
+                          inst.castsShadows});
     if (!mesh.spheres.empty())
       gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + uint32_t(mesh.primitives.size()),
-                          uint32_t(mesh.spheres.size()), true});
+                          uint32_t(mesh.spheres.size()), true, inst.castsShadows});
     gs.triangleCount += meshTriangles[inst.mesh];
     gs.sphereCount += mesh.spheres.size();
 
@@ -165,6 +169,10 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   uploadEmissiveTriangles(ctx, scene, gs);
   gs.uploadMs = msSince(t0);
 
+  if (!ctx.caps().rayTracing()) {  // the raster mode needs no acceleration structures
+    gs.tlasInstances = std::move(tlasInstances);  // animation still poses them (never built)
+    return gs;
+  }
   auto t1 = Clock::now();
   gs.blases = rhi::buildBlases(ctx, blasInputs, &gs.accelStats);
   for (auto& ti : tlasInstances) ti.accelerationStructureReference = gs.blases[ti.accelerationStructureReference].address();

@@ -22,6 +22,7 @@ namespace rayster::render {
 struct GpuEnvironment {
   uint32_t kind = 0;                 // gpu::kEnvironment*
   uint32_t slot = 0xFFFFFFFFu;       // bindless slot of the equirect map
+  uint32_t prefilteredSlot = 0xFFFFFFFFu;  // GGX-prefiltered levels (gpu::kPrefilteredLevels)
   std::array<glm::vec3, 9> irradianceSh{};  // cosine-convolved SH9 of the radiance, × intensity
   // Importance sampling (the path tracer): a piecewise-constant 2D distribution over cdfWidth ×
   // cdfHeight equirect cells ∝ luminance × sinθ; 0 × 0 for a black environment.
@@ -34,6 +35,7 @@ struct GpuScene {
     uint32_t geometry;
     uint32_t count;  // triangles: index count; spheres: sphere count (one box each)
     bool spheres;
+    bool castsShadows = true;  // false for a light's visible shape (no shadow-map draw)
   };
   std::vector<rhi::Buffer> vertexBuffers;  // one per primitive (AABBs for sphere sets)
   std::vector<rhi::Buffer> indexBuffers;   // one per primitive (SphereRecords for sphere sets)
@@ -46,9 +48,11 @@ struct GpuScene {
   rhi::Buffer emissiveTriangles;   // gpu::EmissiveTriangle[] (render/gpu_emissive.cpp)
   uint32_t emissiveTriangleCount = 0;
   float emissiveArea = 0.0f;
+  rhi::Image environmentPrefiltered;  // built once at upload; glossy environment light of the raster mode
   GpuEnvironment environment;
   rhi::Image dfgTable;                // split-sum DFG (render/dfg.h), RG16F
   uint32_t dfgSlot = 0xFFFFFFFFu;     // its bindless slot
+  // Built only on devices with ray tracing (rhi::Capabilities::rayTracing()); empty otherwise.
   std::vector<rhi::AccelerationStructure> blases;
   rhi::Tlas tlas;
   std::vector<VkAccelerationStructureInstanceKHR> tlasInstances;  // as built; updated when instances move

@@ -1,5 +1,6 @@
 #include "render/pipelines.h"
 
+#include "rhi/context.h"
 #include "shaders/shared/types.h"
 
 namespace rayster::render {
@@ -39,6 +40,38 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   g.vertex = "gbuffer_sphere.vert";
   g.fragment = "gbuffer_sphere.frag";
   p.gbufferSpheres = rhi::createGraphicsPipeline(ctx, g);
+
+  rhi::GraphicsPipelineDesc shadowMap;
+  shadowMap.vertex = "shadow_map.vert";
+  shadowMap.fragment = "shadow_map.frag";
+  shadowMap.depthFormat = kDepthFormat;
+  shadowMap.bindings = {{0, kUniform}};
+  shadowMap.pushConstantBytes = 72;  // clipFromWorld, instance, geometry
+  p.shadowMap = rhi::createGraphicsPipeline(ctx, shadowMap);
+  shadowMap.vertex = "shadow_sphere.vert";
+  shadowMap.fragment = "shadow_sphere.frag";
+  shadowMap.pushConstantBytes = 88;  // clipFromWorld, instance, geometry, light position or direction
+  p.shadowSpheres = rhi::createGraphicsPipeline(ctx, shadowMap);
+  const rhi::Binding resolve[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kUniform}, {5, kStorage}};
+  p.shadowResolve = rhi::createComputePipeline(ctx, "shadow_resolve.comp", resolve, 0);
+  const rhi::Binding ssr[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled},
+                              {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage}};
+  p.ssr = rhi::createComputePipeline(ctx, "ssr.comp", ssr, 0, textures);
+  const rhi::Binding constants[] = {{0, kStorage}, {1, kStorage}};
+  p.rasterConstants = rhi::createComputePipeline(ctx, "raster_constants.comp", constants, 8);
+  p.denoise = DenoisePipelines::create(ctx);
+  const rhi::Binding lighting[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled},
+                                   {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage},
+                                   {8, kSampled}, {9, kSampled}, {10, kSampled}, {11, kSampled}};
+  p.lighting = rhi::createComputePipeline(ctx, "lighting.comp", lighting, 0, textures);
+  const rhi::Binding taa[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kStorage}};
+  p.taa = rhi::createComputePipeline(ctx, "taa.comp", taa, 16);
+  const rhi::Binding tone[] = {{1, kSampled}, {2, kStorage}};
+  p.tonemap = rhi::createComputePipeline(ctx, "tonemap.comp", tone, 24);
+  if (!ctx.caps().rayTracing()) return p;
+
+  // Hit groups by geometry kind (gpu::kHitGroupTriangles, gpu::kHitGroupSpheres): alpha-tested
+  // triangles run any-hit; spheres run their intersection shader.
 
   rhi::RayTracingPipelineDesc primary;
   primary.raygen = "gbuffer.rgen";
@@ -86,16 +119,6 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   indirect.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kStorage}};
   indirect.globalSet = textures;
   p.indirect = rhi::RayTracingPipeline(ctx, indirect);
-  p.denoise = DenoisePipelines::create(ctx);
-
-  const rhi::Binding lighting[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled},
-                                   {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage},
-                                   {8, kSampled}, {9, kSampled}, {10, kSampled}, {11, kSampled}};
-  p.lighting = rhi::createComputePipeline(ctx, "lighting.comp", lighting, 0, textures);
-  const rhi::Binding taa[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kStorage}};
-  p.taa = rhi::createComputePipeline(ctx, "taa.comp", taa, 16);
-  const rhi::Binding tone[] = {{1, kSampled}, {2, kStorage}};
-  p.tonemap = rhi::createComputePipeline(ctx, "tonemap.comp", tone, 24);
   return p;
 }
 

@@ -25,6 +25,7 @@ inline constexpr VkFormat kTaaHistoryFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  //
 struct Pipelines {
   rhi::Pipeline gbufferRaster;
   rhi::Pipeline gbufferSpheres;  // raster impostors for analytic spheres
+  // The ray-tracing pipelines exist only on devices with ray-tracing pipelines (Capabilities::rayTracing()).
   rhi::RayTracingPipeline gbufferTraced;
   rhi::RayTracingPipeline shadows;
   rhi::RayTracingPipeline specular;  // reflections and refractions (bounce loop)
@@ -33,6 +34,12 @@ struct Pipelines {
   rhi::RayTracingPipeline indirect;  // one-bounce indirect diffuse
   DenoisePipelines denoise;          // shadows/AO and SVGF (render/passes/denoise.h)
   rhi::Pipeline lighting;
+  // Raster mode (render/raster_frame.h): depth-only shadow maps, their resolve, screen-space specular.
+  rhi::Pipeline shadowMap;
+  rhi::Pipeline shadowSpheres;  // analytic spheres: bounding cubes, exact depth in the fragment shader
+  rhi::Pipeline shadowResolve;
+  rhi::Pipeline ssr;
+  rhi::Pipeline rasterConstants;
   rhi::Pipeline taa;
   rhi::Pipeline tonemap;
 

@@ -20,6 +20,7 @@
 #include "render/passes/passes.h"
 #include "render/path_tracer.h"
 #include "render/pipelines.h"
+#include "render/raster_frame.h"
 #include "rhi/commands.h"
 #include "rhi/context.h"
 #include "rhi/memory.h"
@@ -159,6 +160,7 @@ struct Renderer::Impl {
     }
   } specularHistory, indirectHistory, directHistory;
   std::optional<RawRayPipelines> rawPipelines;  // created on the first render with rawRays
+  RasterFrame raster;  // the raster mode's passes (render/raster_frame.h)
   uint32_t frameIndex = 0;
   uint32_t taaFrames = 0;  // frames in the TAA history since its last reset
   scene::Scene pose;  // animated scenes: nodes, instances and animations only, posed each frame
@@ -169,7 +171,7 @@ struct Renderer::Impl {
         linear(c, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
         constants(c, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, rhi::MemoryUsage::Upload,
                   "frame-constants"),
-        commands(c), timers(c, kMaxTimedPasses) {}
+        commands(c), timers(c, kMaxTimedPasses), raster(c) {}
 
   bool manyLights = false;  // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
   bool indirectOn(const RenderSettings& s) const { return s.indirect.value_or(scene.indirectByDefault); }
@@ -216,6 +218,7 @@ struct Renderer::Impl {
     fc.environmentKind = gpu.environment.kind;
     fc.environment = glm::vec4(glm::vec3(env.intensity), env.rotation);
     fc.environmentSlot = gpu.environment.slot;
+    fc.prefilteredSlot = gpu.environment.prefilteredSlot;
     fc.skyZenith = env.zenith;
     fc.skyHorizon = env.horizon;
     fc.skyGround = env.ground;
@@ -224,7 +227,9 @@ struct Renderer::Impl {
     fc.mirrorRoughness = s.mirrorRoughness;
     fc.glossyThreshold = s.glossyThreshold;
     fc.aoRadius = aoRadius(s);
-    fc.effectFlags = (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u);
+    // The raster mode has neither AO nor indirect light: ambient and the SH environment stand in.
+    fc.effectFlags = s.mode == Mode::Raster ? gpu::kEffectPrefilteredEnv
+                                            : (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u);
     fc.dfgSlot = gpu.dfgSlot;
     fc.emissiveTriangles = gpu.emissiveTriangles.address();
     fc.environmentCdf = gpu.environmentCdf.address();
@@ -368,13 +373,17 @@ struct Renderer::Impl {
     const scene::Camera* cam = *camera;
     RenderOutput out;
     frameIndex = 0;
-    manyLights = gpu.lightCount > std::min(s.shadowLights, gpu::kMaxShadowLights);
+    const bool rasterMode = s.mode == Mode::Raster;
+    out.modeUsed = s.mode;
+    // The raster mode shadows the first shadowLights lights from shadow maps and leaves the rest
+    // unshadowed: stochastic light selection needs shadow rays.
+    manyLights = !rasterMode && gpu.lightCount > std::min(s.shadowLights, gpu::kMaxShadowLights);
     if (manyLights)
       log::info("{} lights, {} shadow layers: one light per pixel by importance", gpu.lightCount,
                 std::min(s.shadowLights, gpu::kMaxShadowLights));
     writeConstants(s, *cam, glm::vec2(0.0f), nullptr);
-    out.primaryUsed = s.primary;
-    if (s.primary == Primary::Auto) {
+    out.primaryUsed = rasterMode ? Primary::Raster : s.primary;
+    if (out.primaryUsed == Primary::Auto) {
       // On the H100 the raster G-buffer costs many times the traced one; elsewhere raster is cheap.
       out.rasterGBufferMs = timeProducer(s, Primary::Raster);
       out.tracedGBufferMs = timeProducer(s, Primary::Traced);
@@ -437,61 +446,74 @@ struct Renderer::Impl {
         // Motion vectors of this frame still show last frame's motion after the pose stops.
         moving = moving || moved || movedBefore;
         movedBefore = moved;
-        graph.addPass("tlas-update", [](graph::PassBuilder& b) { b.sideEffect(); },
-                      [this](graph::PassContext& pc) { gpu.tlas.update(pc.cmd, gpu.tlasInstances); });
+        if (!rasterMode)
+          graph.addPass("tlas-update", [](graph::PassBuilder& b) { b.sideEffect(); },
+                        [this](graph::PassContext& pc) { gpu.tlas.update(pc.cmd, gpu.tlasInstances); });
       }
 
       GBuffer gb = out.primaryUsed == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
-      // Every run starts without history, and so does a camera cut; while the camera or an object
-      // moves, the denoisers keep short histories.
-      const TemporalState temporal{moving, f == 0 || cut || !surfaceHistory.valid};
-      const DenoiseInputs dn{pipelines.denoise, nearest.handle(), in.size};
-      const SurfacePair surface{
-          writeSurface(graph, dn, gb.depth, gb.normals, gb.id, surfaceHistory.next(graph, "surface", f),
-                       camera.zNear, camera.zFar),
-          surfaceHistory.previous(graph, "surface", f)};
-      const graph::ImageHandle motion = gb.motion;
+      graph::ImageHandle raw, visibility, specularRaw, specular, aoRaw, ao, indirectRaw, indirect, hdr;
+      if (rasterMode) {
+        const RasterFrameOutput r = raster.record(graph, in, gb, scene, camera, shadowLights());
+        raw = visibility = r.visibility;
+        specularRaw = specular = r.specular;
+        aoRaw = ao = r.ao;
+        indirectRaw = indirect = r.indirect;
+        hdr = r.hdr;
+      } else {
+        // Every run starts without history, and so does a camera cut; while the camera or an object
+        // moves, the denoisers keep short histories.
+        const TemporalState temporal{moving, f == 0 || cut || !surfaceHistory.valid};
+        const DenoiseInputs dn{pipelines.denoise, nearest.handle(), in.size};
+        const SurfacePair surface{
+            writeSurface(graph, dn, gb.depth, gb.normals, gb.id, surfaceHistory.next(graph, "surface", f),
+                         camera.zNear, camera.zFar),
+            surfaceHistory.previous(graph, "surface", f)};
+        const graph::ImageHandle motion = gb.motion;
 
-      graph::ImageHandle raw = traceShadows(graph, in, gb, shadowLights());
-      if (s.rawRays) {
-        if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
-        traceRawPrimary(graph, in, *rawPipelines);
-        traceRawShadows(graph, in, gb, shadowLights(), *rawPipelines);
-      }
-      // Many-light mode traces no shadow layers: lighting reads none, so nothing to denoise.
-      graph::ImageHandle visibility = raw;
-      if (shadowLights() > 0)
-        visibility = denoiseShadows(graph, dn, surface, motion, raw,
-                                    {shadowHistory.previous(graph, "shadow-history", f),
-                                     shadowHistory.next(graph, "shadow-history", f)},
-                                    temporal)
-                         .denoised;
-      graph::ImageHandle specularRaw = traceSpecular(graph, in, gb);
-      graph::ImageHandle specular =
-          denoiseRadiance(graph, dn, "reflection", surface, motion, gb.material, specularRaw,
-                          specularHistory.colorPair(graph, "specular", f),
-                          specularHistory.momentsPair(graph, "specular", f), temporal)
-              .denoised;
-      graph::ImageHandle direct;
-      if (manyLights)
-        direct = denoiseRadiance(graph, dn, "direct", surface, motion, gb.material, traceDirect(graph, in, gb),
-                                 directHistory.colorPair(graph, "direct", f),
-                                 directHistory.momentsPair(graph, "direct", f), temporal)
-                     .denoised;
-      // When an effect is off its raw image is constant and goes to lighting as is.
-      graph::ImageHandle aoRaw = traceAo(graph, in, gb), ao = aoRaw;
-      if (s.ao)
-        ao = denoiseShadows(graph, dn, surface, motion, aoRaw,
-                            {aoHistory.previous(graph, "ao-history", f), aoHistory.next(graph, "ao-history", f)},
-                            temporal, "ao")
-                 .denoised;
-      graph::ImageHandle indirectRaw = traceIndirect(graph, in, gb), indirect = indirectRaw;
-      if (indirectOn(s))
-        indirect = denoiseRadiance(graph, dn, "indirect", surface, motion, gb.material, indirectRaw,
-                                   indirectHistory.colorPair(graph, "indirect", f),
-                                   indirectHistory.momentsPair(graph, "indirect", f), temporal)
+        raw = traceShadows(graph, in, gb, shadowLights());
+        if (s.rawRays) {
+          if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
+          traceRawPrimary(graph, in, *rawPipelines);
+          traceRawShadows(graph, in, gb, shadowLights(), *rawPipelines);
+        }
+        // Many-light mode traces no shadow layers: lighting reads none, so nothing to denoise.
+        visibility = raw;
+        if (shadowLights() > 0)
+          visibility = denoiseShadows(graph, dn, surface, motion, raw,
+                                      {shadowHistory.previous(graph, "shadow-history", f),
+                                       shadowHistory.next(graph, "shadow-history", f)},
+                                      temporal)
+                           .denoised;
+        specularRaw = traceSpecular(graph, in, gb);
+        specular =
+            denoiseRadiance(graph, dn, "reflection", surface, motion, gb.material, specularRaw,
+                            specularHistory.colorPair(graph, "specular", f),
+                            specularHistory.momentsPair(graph, "specular", f), temporal)
+                .denoised;
+        graph::ImageHandle direct;
+        if (manyLights)
+          direct = denoiseRadiance(graph, dn, "direct", surface, motion, gb.material, traceDirect(graph, in, gb),
+                                   directHistory.colorPair(graph, "direct", f),
+                                   directHistory.momentsPair(graph, "direct", f), temporal)
                        .denoised;
-      graph::ImageHandle hdr = shadeLighting(graph, in, gb, {visibility, specular, ao, indirect, direct});
+        // When an effect is off its raw image is constant and goes to lighting as is.
+        aoRaw = traceAo(graph, in, gb);
+        ao = aoRaw;
+        if (s.ao)
+          ao = denoiseShadows(graph, dn, surface, motion, aoRaw,
+                              {aoHistory.previous(graph, "ao-history", f), aoHistory.next(graph, "ao-history", f)},
+                              temporal, "ao")
+                   .denoised;
+        indirectRaw = traceIndirect(graph, in, gb);
+        indirect = indirectRaw;
+        if (indirectOn(s))
+          indirect = denoiseRadiance(graph, dn, "indirect", surface, motion, gb.material, indirectRaw,
+                                     indirectHistory.colorPair(graph, "indirect", f),
+                                     indirectHistory.momentsPair(graph, "indirect", f), temporal)
+                         .denoised;
+        hdr = shadeLighting(graph, in, gb, {visibility, specular, ao, indirect, direct});
+      }
       if (s.taa)
         hdr = resolveTaa(graph, in,
                          {hdr, gb.depth, taaHistory.previous(graph, "taa-history", f),
@@ -618,9 +640,11 @@ Result<std::unique_ptr<Renderer>> Renderer::create(rhi::Context& ctx, const scen
 }
 
 Result<RenderOutput> Renderer::render(const RenderSettings& settings) {
+  // Callers fall back to the raster mode themselves (the CLI says so in one line).
+  if (settings.mode != Mode::Raster && !impl_->ctx.caps().rayTracing())
+    return makeError(ExitCode::MissingCapability, "{} has no ray-tracing pipelines: --mode {} needs them",
+                     impl_->ctx.info().name, modeName(settings.mode));
   if (settings.mode == Mode::PathTrace) return impl_->renderPathTraced(settings);
-  if (settings.mode != Mode::Hybrid)
-    return makeError(ExitCode::BadArguments, "--mode {} is not implemented yet", modeName(settings.mode));
   return impl_->render(settings);
 }
 

@@ -1,6 +1,7 @@
 #include "rhi/context.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <atomic>
 #include <cstdio>
 #include <cstring>
@@ -46,6 +47,13 @@ constexpr const char* kRayTracingExtensions[] = {
     VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME,
 };
 
+// RAYSTER_DISABLE_RT=1 (for testing) makes every device look as if it had no ray tracing, so the
+// raster fallback and --require-rt can be tested on lavapipe.
+bool rayTracingDisabledForTesting() {
+  const char* v = std::getenv("RAYSTER_DISABLE_RT");
+  return v && std::string(v) == "1";
+}
+
 DeviceInfo describe(VkPhysicalDevice pd) {
   DeviceInfo info;
   info.handle = pd;
@@ -81,6 +89,11 @@ DeviceInfo describe(VkPhysicalDevice pd) {
   c.minScratchOffsetAlignment = asProps.minAccelerationStructureScratchOffsetAlignment;
   c.timestampPeriodNs = props.properties.limits.timestampPeriod;
   c.timestamps = props.properties.limits.timestampComputeAndGraphics;
+  if (rayTracingDisabledForTesting()) {
+    c.accelerationStructure = false;
+    c.rayTracingPipeline = false;
+    c.rayQuery = false;
+  }
 
   if (VK_API_VERSION_MINOR(info.apiVersion) < 3 && VK_API_VERSION_MAJOR(info.apiVersion) == 1)
     info.unsuitableReason = "supports Vulkan 1." + std::to_string(VK_API_VERSION_MINOR(info.apiVersion)) + ", Rayster needs 1.3";
@@ -219,8 +232,10 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
   if (options.requireRayTracing && !ctx->info_.caps.rayTracing())
     return makeError(ExitCode::MissingCapability,
                      "{} has no ray-tracing pipelines (VK_KHR_ray_tracing_pipeline and VK_KHR_acceleration_structure); "
-                     "on lavapipe install mesa-vulkan-drivers from bookworm-backports",
-                     ctx->info_.name);
+                     "{}",
+                     ctx->info_.name,
+                     rayTracingDisabledForTesting() ? "RAYSTER_DISABLE_RT=1 hides it"
+                                                    : "on lavapipe install mesa-vulkan-drivers from bookworm-backports");
 
   // One queue that does graphics, compute and transfer: enough for a frame recorded in order.
   uint32_t qn = 0;

@@ -6,15 +6,15 @@
 namespace rayster::render {
 
 graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                 const LightingInputs& inputs) {
+                                 const LightingInputs& inputs, const std::string& name) {
   const auto [visibility, specular, ao, indirect, direct] = inputs;
   // Without many-light direct light the binding still needs an image; the shader does not read it.
   const graph::ImageHandle directOrUnused = direct.valid() ? direct : specular;
   graph::ImageHandle hdr = graph.createImage(
-      "hdr", {kHdrFormat, in.size.width, in.size.height, 1,
+      name == "lighting" ? "hdr" : name + "-hdr", {kHdrFormat, in.size.width, in.size.height, 1,
               VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
   graph.addPass(
-      "lighting",
+      name,
       [&](graph::PassBuilder& b) {
         for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, visibility, specular, ao, indirect,
                        directOrUnused})

@@ -2,6 +2,7 @@
 // The passes of the hybrid frame (DESIGN.md §3), one file each: functions from graph inputs to
 // graph outputs. A pass declares what it reads and writes; the graph places the barriers.
 #include <cstdint>
+#include <string>
 
 #include <volk.h>
 
@@ -93,8 +94,10 @@ struct LightingInputs {
   graph::ImageHandle indirect;    // one-bounce indirect irradiance E (RGBA16F)
   graph::ImageHandle direct;      // many-light direct radiance; invalid when every light has a layer
 };
+// `name`: the pass's name; its output image is "hdr" for "lighting", else "<name>-hdr" (the raster
+// mode lights twice: a first image for screen-space reflections to read, then the final one).
 graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                 const LightingInputs& inputs);
+                                 const LightingInputs& inputs, const std::string& name = "lighting");
 // TAA resolve: blends `current` with the reprojected `history` and writes `next` (the output).
 inline constexpr float kTaaCurrentWeight = 0.1f;  // steady-state weight of the current frame (the book)
 struct TaaInputs {

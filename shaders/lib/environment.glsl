@@ -28,6 +28,29 @@ vec3 environmentRadiance(vec3 dir) {
   return vec3(0.0);
 }
 
+// Specular environment light along `dir` for GGX roughness `roughness`, from the prefiltered
+// levels (render/gpu_environment.cpp); roughness 0 is the environment itself. Without prefiltered
+// levels: the environment blurred towards its irradiance.
+vec3 prefilteredLevel(vec2 uv, float level) {
+  const float h = float(kPrefilteredWidth / 2u);
+  float v = clamp(uv.y, 0.5 / h, 1.0 - 0.5 / h);
+  vec2 at = vec2(uv.x, (level - 1.0 + v) / float(kPrefilteredLevels));
+  return frame.environment.rgb * textureLod(textures[nonuniformEXT(frame.prefilteredSlot)], at, 0.0).rgb;
+}
+
+vec3 environmentIrradiance(vec3 normal);
+
+vec3 environmentSpecular(vec3 dir, float roughness) {
+  if (frame.prefilteredSlot == 0xFFFFFFFFu)
+    return mix(environmentRadiance(dir), environmentIrradiance(dir) / kPi, roughness);
+  vec2 uv = equirectUv(rotateY(normalize(dir), -frame.environment.w));
+  float lod = clamp(roughness, 0.0, 1.0) * float(kPrefilteredLevels);
+  float lo = floor(lod);
+  vec3 a = lo < 1.0 ? environmentRadiance(dir) : prefilteredLevel(uv, lo);
+  vec3 b = lo >= float(kPrefilteredLevels) ? a : prefilteredLevel(uv, lo + 1.0);
+  return mix(a, b, lod - lo);
+}
+
 // Irradiance E(n) (W/m²-like) at a surface with normal n; Lambert radiance is albedo/π · E.
 vec3 environmentIrradiance(vec3 normal) {
   vec3 n = rotateY(normal, -frame.environment.w);

@@ -113,7 +113,9 @@ vec3 shadeSurface(ShadingInput s, bool direct, inout uint rng) {
     if (!s.useIndirect) radiance += bsdf.diffuse * environmentIrradiance(s.n) / kPi * (1.0 - fv) * occlusion;
     if (w < 1.0) {
       vec3 r = reflect(-s.v, s.n);
-      vec3 specularEnv = mix(environmentRadiance(r), environmentIrradiance(r) / kPi, s.roughness);
+      vec3 specularEnv = (frame.effectFlags & kEffectPrefilteredEnv) != 0u
+                             ? environmentSpecular(r, s.roughness)
+                             : mix(environmentRadiance(r), environmentIrradiance(r) / kPi, s.roughness);
       radiance += (1.0 - w) * fv * specularEnv * occlusion;
     }
   }

@@ -56,7 +56,12 @@ RAYSTER_CONST uint kTonemapAces = 0u;
 RAYSTER_CONST uint kTonemapNeutral = 1u;
 // FrameConstants::effectFlags
 RAYSTER_CONST uint kEffectAo = 1u;        // ray-traced ambient occlusion scales ambient/environment light
-RAYSTER_CONST uint kEffectIndirect = 2u;  // one-bounce ray-traced indirect diffuse replaces ambient/env diffuse
+RAYSTER_CONST uint kEffectIndirect = 2u;
+RAYSTER_CONST uint kEffectPrefilteredEnv = 4u;  // untraced glossy light from the prefiltered environment (raster mode)
+// Levels of the prefiltered environment (render/gpu_environment.cpp): level k (1..N) is GGX
+// roughness k/N, each kPrefilteredWidth × kPrefilteredWidth/2, stacked vertically in one image.
+RAYSTER_CONST uint kPrefilteredLevels = 6u;
+RAYSTER_CONST uint kPrefilteredWidth = 64u;  // one-bounce ray-traced indirect diffuse replaces ambient/env diffuse
 
 // Environment kinds (FrameConstants::environmentKind)
 RAYSTER_CONST uint kEnvironmentBlack = 0u;
@@ -181,7 +186,7 @@ struct FrameConstants {
   vec3 skyHorizon;
   uint sceneFlags;        // kScene* bits
   vec3 skyGround;
-  uint pad1;
+  uint prefilteredSlot;   // bindless slot of the prefiltered (GGX) environment levels; ~0u: none
   vec4 irradianceSh[9];   // environment irradiance, order-2 spherical harmonics (rgb)
   uint64_t geometries;  // GeometryRecord[]
   uint64_t instances;   // InstanceRecord[]

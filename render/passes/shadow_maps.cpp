@@ -1,0 +1,90 @@
+// Raster mode: shadow maps (one depth atlas, a tile per view) and their PCF resolve.
+#include <algorithm>
+
+#include "render/gpu_scene.h"
+#include "render/passes/raster_passes.h"
+#include "render/pipelines.h"
+#include "render/shadow_setup.h"
+
+namespace rayster::render {
+
+graph::ImageHandle renderShadowAtlas(graph::RenderGraph& graph, const FrameInputs& in, const ShadowAtlas& atlas) {
+  const VkExtent2D size{atlas.columns * atlas.tileSize, atlas.rows * atlas.tileSize};
+  graph::ImageHandle depth = graph.createImage(
+      "shadow-atlas", {kDepthFormat, size.width, size.height, 1,
+                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+  graph.addPass(
+      "shadow-maps", [&](graph::PassBuilder& b) { b.write(depth, graph::Use::DepthAttachment); },
+      [depth, size, &atlas, &in](graph::PassContext& pc) {
+        VkRenderingAttachmentInfo da{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        da.imageView = pc.image(depth).view();
+        da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+        da.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        da.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        da.clearValue.depthStencil = {0.0f, 0};  // reversed Z: nothing in the way
+        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        ri.renderArea = {{0, 0}, size};
+        ri.layerCount = 1;
+        ri.pDepthAttachment = &da;
+        vkCmdBeginRendering(pc.cmd, &ri);
+        // Triangles, then analytic spheres (bounding cubes intersected exactly along the light's rays).
+        for (bool spheres : {false, true}) {
+          const rhi::Pipeline& pipe = spheres ? in.pipelines.shadowSpheres : in.pipelines.shadowMap;
+          vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.handle());
+          rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
+          for (uint32_t v = 0; v < atlas.setup.viewCount; ++v) {
+            const ShadowAtlas::Tile& t = atlas.tiles[v];
+            VkViewport vp{float(t.x), float(t.y), float(atlas.tileSize), float(atlas.tileSize), 0, 1};
+            VkRect2D scissor{{int32_t(t.x), int32_t(t.y)}, {atlas.tileSize, atlas.tileSize}};
+            vkCmdSetViewport(pc.cmd, 0, 1, &vp);
+            vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
+            struct {
+              glm::mat4 clipFromWorld;
+              uint32_t instance, geometry;
+              glm::vec4 light;
+            } push{atlas.setup.views[v].clipFromWorld, 0, 0, atlas.lightRays[v]};
+            const uint32_t bytes = spheres ? sizeof(push) : 72;
+            for (const GpuScene::Draw& d : in.scene.draws) {
+              if (d.spheres != spheres || !d.castsShadows) continue;  // lights' visible shapes cast nothing
+              push.instance = d.instance;
+              push.geometry = d.geometry;
+              vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, bytes, &push);
+              vkCmdDraw(pc.cmd, spheres ? 36 : d.count, spheres ? d.count : 1, 0, 0);
+            }
+          }
+        }
+        vkCmdEndRendering(pc.cmd);
+      });
+  return depth;
+}
+
+graph::ImageHandle resolveShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
+                                  graph::ImageHandle atlas, const rhi::Buffer& setup, uint32_t lights) {
+  graph::ImageHandle visibility = graph.createImage(
+      "shadow-visibility", {kVisibilityFormat, in.size.width, in.size.height, std::max(lights, 1u),
+                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                            true});
+  graph.addPass(
+      "shadow-resolve",
+      [&](graph::PassBuilder& b) {
+        for (auto h : {gb.depth, gb.normals, atlas}) b.read(h, graph::Use::SampledCompute);
+        b.write(visibility, graph::Use::StorageWriteCompute);
+      },
+      [gb, atlas, visibility, &setup, &in](graph::PassContext& pc) {
+        const rhi::Pipeline& pipe = in.pipelines.shadowResolve;
+        VkSampler s = in.nearest.handle();
+        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
+        rhi::DescriptorWriter()
+            .uniformBuffer(0, in.constants)
+            .sampledImage(1, pc.image(gb.depth).view(), s)
+            .sampledImage(2, pc.image(gb.normals).view(), s)
+            .sampledImage(3, pc.image(atlas).view(), s)
+            .uniformBuffer(4, setup)
+            .storageImage(5, pc.image(visibility).view())
+            .push(pc.cmd, pipe);
+        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
+      });
+  return visibility;
+}
+
+} // namespace rayster::render
