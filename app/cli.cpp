@@ -9,6 +9,7 @@
 
 #include "app/commands.h"
 #include "app/render_command.h"
+#include "app/viewer/viewer.h"
 #include "core/error.h"
 #include "core/log.h"
 
@@ -117,6 +118,8 @@ int run(int argc, char** argv) {
                          "Exit 9 unless at least this fraction of pixels is within tolerance (e.g. 0.999)");
   compareCmd->add_option("--heatmap", co.heatmap, "Write a per-pixel difference heatmap (.png)");
   compareCmd->fallthrough();
+  ViewCommand view;
+  addViewCommand(cli, view);
   render->fallthrough();  // global options (-v, --validation, --device) also after the subcommand
   info->fallthrough();
 
@@ -136,6 +139,7 @@ int run(int argc, char** argv) {
 
   if (info->parsed()) return infoCommand();
   if (compareCmd->parsed()) return compareCommand(co);
+  if (view.app->parsed()) return viewCommand(view, validation, device, !noLabels);
   if (render->parsed()) {
     if (!parseSize(size, ro.settings.width, ro.settings.height)) {
       std::fprintf(stderr, "rayster: error: --size must be WxH with 1..16384 each, got '%s'\n", size.c_str());

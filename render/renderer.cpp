@@ -5,6 +5,8 @@
 #include <cstring>
 #include <deque>
 #include <map>
+#include <optional>
+#include <tuple>
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -280,7 +282,34 @@ struct Renderer::Impl {
     return cam;
   }
 
-  Result<RenderOutput> render(const RenderSettings& s) {
+  // State of one run (render() or a viewer session): what beginRun sets up and each frame advances.
+  struct Run {
+    RenderSettings settings;
+    const scene::Camera* cam = nullptr;
+    RenderOutput out;
+    uint32_t frame = 0;
+    bool animated = false, movedBefore = false;
+    glm::mat4 prevClipFromWorld{1.0f};
+    scene::Camera prevCamera;
+    rhi::Buffer ldrReadback, hdrReadback;
+    graph::ResourceState ldrState, hdrState;
+    struct AovReadback {
+      std::string name;
+      VkFormat format;
+      uint32_t layer;
+      rhi::Buffer buffer;
+    };
+    std::vector<AovReadback> aovReadback;
+    std::deque<graph::ResourceState> aovStates;  // stable addresses for the graph
+    std::map<std::string, std::vector<double>> passTimes;
+    std::vector<std::string> passOrder;
+  };
+  std::optional<Run> run;
+  // The presentable copy of the last frame's LDR image (FrameControl::present).
+  rhi::Image output;
+  graph::ResourceState outputState;
+
+  Status beginRun(const RenderSettings& s) {
     if (s.cameraPath && scene.cameraPath.empty())
       return makeError(ExitCode::BadArguments, "--camera-path: scene '{}' has no camera path", scene.name);
     const scene::Camera* cam = &scene.cameras.front();
@@ -290,7 +319,11 @@ struct Renderer::Impl {
       if (it == scene.cameras.end()) return makeError(ExitCode::BadArguments, "the scene has no camera named '{}'", s.camera);
       cam = &*it;
     }
-    RenderOutput out;
+    run.reset();
+    run.emplace();
+    run->settings = s;
+    run->cam = cam;
+    RenderOutput& out = run->out;
     frameIndex = 0;
     manyLights = gpu.lightCount > std::min(s.shadowLights, gpu::kMaxShadowLights);
     if (manyLights)
@@ -309,45 +342,48 @@ struct Renderer::Impl {
     }
 
     ensureHistory(s);
-    const bool animated = scene.animated() && !gpu.instanceRecords.empty();
-    if (animated) {
+    run->animated = scene.animated() && !gpu.instanceRecords.empty();
+    if (run->animated) {
       pose.nodes = scene.nodes;
       pose.instances = scene.instances;
       pose.animations = scene.animations;
     }
-    bool movedBefore = false;
-    taaHistory.valid = false;  // every headless run starts its own history
-    glm::mat4 prevClipFromWorld(1.0f);
-    scene::Camera prevCamera = *cam;
+    taaHistory.valid = false;  // every run starts its own history
+    run->prevCamera = *cam;
     const size_t pixels = size_t(s.width) * s.height;
-    rhi::Buffer ldrReadback(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
-    rhi::Buffer hdrReadback(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "hdr-readback");
-    graph::ResourceState ldrState, hdrState;
-    struct AovReadback {
-      std::string name;
-      VkFormat format;
-      uint32_t layer;
-      rhi::Buffer buffer;
-    };
-    std::vector<AovReadback> aovReadback;
-    std::deque<graph::ResourceState> aovStates;  // stable addresses for the graph
+    run->ldrReadback = rhi::Buffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
+    run->hdrReadback = rhi::Buffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "hdr-readback");
     for (const std::string& name : s.aovs)
       if (std::find(aovNames().begin(), aovNames().end(), name) == aovNames().end())
         return makeError(ExitCode::BadArguments, "unknown AOV '{}'", name);
-    std::map<std::string, std::vector<double>> passTimes;
-    std::vector<std::string> passOrder;
+    return okStatus();
+  }
 
-    for (uint32_t f = 0; f < s.frames; ++f) {
+  FrameStats renderFrame(const FrameControl& control) {
+    Run& r = *run;
+    const RenderSettings& s = r.settings;
+    RenderOutput& out = r.out;
+    const uint32_t f = r.frame++;
+    const bool animated = r.animated;
+    bool& movedBefore = r.movedBefore;
+    glm::mat4& prevClipFromWorld = r.prevClipFromWorld;
+    scene::Camera& prevCamera = r.prevCamera;
+    auto [ldrReadback, hdrReadback, ldrState, hdrState, aovReadback, aovStates] =
+        std::tie(r.ldrReadback, r.hdrReadback, r.ldrState, r.hdrState, r.aovReadback, r.aovStates);
+    FrameStats stats;
+    {
       frameIndex = f;
-      const scene::Camera camera = s.cameraPath ? cameraOnPath(*cam, s, f) : *cam;
+      const scene::Camera camera = control.camera  ? *control.camera
+                                   : s.cameraPath ? cameraOnPath(*r.cam, s, f)
+                                                  : *r.cam;
       // A cut (the first frame of a run, a jump of the camera, or a listed frame) restarts every history.
-      const bool cut = f == 0 || isCameraCut(prevCamera, camera) ||
+      const bool cut = f == 0 || control.cut || isCameraCut(prevCamera, camera) ||
                        std::find(s.cuts.begin(), s.cuts.end(), f) != s.cuts.end();
       if (cut || !taaHistory.valid) taaFrames = 0;
       const glm::vec2 jitter = s.taa ? jitterNdc(f, s.width, s.height) : glm::vec2(0.0f);
       prevClipFromWorld = writeConstants(s, camera, jitter, cut ? nullptr : &prevClipFromWorld);
       prevCamera = camera;
-      const bool last = f + 1 == s.frames;
+      const bool last = control.readback;
       graph::RenderGraph graph(&ctx, &transients);
       FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, gpu.bindless->set()};
       bool moving = s.cameraPath;
@@ -408,6 +444,7 @@ struct Renderer::Impl {
                          {hdr, gb.depth, taaHistory.previous(graph, "taa-history", f),
                           taaHistory.next(graph, "taa-history", f), gb.motion, taaFrames});
       graph::ImageHandle ldr = tonemap(graph, in, hdr, {std::exp2(s.exposureEv), s.tonemap, s.seed});
+      if (control.present) copyToOutput(graph, ldr);
       if (last) {
         readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));
         readback(graph, hdr, graph.importBuffer("hdr-readback", &hdrReadback, &hdrState));
@@ -430,7 +467,7 @@ struct Renderer::Impl {
             continue;
           }
           const rhi::ImageDesc& d = graph.imageDesc(it->second.first);
-          aovReadback.push_back({name, d.format, it->second.second,
+          aovReadback.push_back(Run::AovReadback{name, d.format, it->second.second,
                                  rhi::Buffer(ctx, size_t(d.width) * d.height * texelBytes(d.format) * d.layers,
                                              VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
                                              "aov-readback")});
@@ -447,17 +484,30 @@ struct Renderer::Impl {
       ctx.wait(commands.submit());
       for (History* h : {&surfaceHistory, &shadowHistory, &aoHistory}) h->valid = true;
       for (auto& t : timers.read()) {
-        if (t.name == "readback" || t.name == "host-visible") continue;
-        if (!passTimes.count(t.name)) passOrder.push_back(t.name);
-        passTimes[t.name].push_back(t.ms);
+        if (t.name == "readback" || t.name == "host-visible" || t.name.rfind("output", 0) == 0) continue;
+        if (!r.passTimes.count(t.name)) r.passOrder.push_back(t.name);
+        r.passTimes[t.name].push_back(t.ms);
+        stats.passes.emplace_back(t.name, t.ms);
+        stats.gpuMs += t.ms;
       }
       ctx.collectGarbage();
       if (s.taa) {
         taaHistory.valid = true;
         ++taaFrames;
       }
-      if (s.progress) s.progress(f + 1, s.frames);
+      stats.primaryUsed = out.primaryUsed;
+      stats.camera = camera;
     }
+    return stats;
+  }
+
+  RenderOutput endRun() {
+    Run& r = *run;
+    const RenderSettings& s = r.settings;
+    RenderOutput out = std::move(r.out);
+    const size_t pixels = size_t(s.width) * s.height;
+    auto [ldrReadback, hdrReadback, aovReadback, passTimes, passOrder] =
+        std::tie(r.ldrReadback, r.hdrReadback, r.aovReadback, r.passTimes, r.passOrder);
 
     out.scene = {gpu.triangleCount, gpu.sphereCount, gpu.accelStats.builtBytes, gpu.accelStats.compactedBytes,
                  gpu.accelStats.tlasBytes, gpu.uploadMs, gpu.accelBuildMs, 0, 0};
@@ -485,7 +535,51 @@ struct Renderer::Impl {
       out.frameMedianMs += ps.medianMs;
       out.passes.push_back(ps);
     }
+    run.reset();
     return out;
+  }
+
+  // Copies the tonemapped image into `output` and leaves it ready as a transfer source, so the
+  // caller's next submission can blit it (the next frame's copy waits for that read).
+  void copyToOutput(graph::RenderGraph& graph, graph::ImageHandle ldr) {
+    const rhi::ImageDesc& d = graph.imageDesc(ldr);
+    const rhi::ImageDesc desc{d.format, d.width, d.height, 1,
+                              VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT};
+    if (!output || !(output.desc() == desc)) {
+      output = rhi::Image(ctx, desc, "output");
+      outputState = {};
+    }
+    graph::ImageHandle dst = graph.importImage("output", &output, &outputState);
+    graph.addPass(
+        "output-copy",
+        [&](graph::PassBuilder& b) {
+          b.read(ldr, graph::Use::TransferSrc);
+          b.write(dst, graph::Use::TransferDst);
+        },
+        [ldr, dst](graph::PassContext& pc) {
+          const rhi::Image& src = pc.image(ldr);
+          VkImageCopy region{};
+          region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+          region.extent = {src.desc().width, src.desc().height, 1};
+          vkCmdCopyImage(pc.cmd, src.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, pc.image(dst).handle(),
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        });
+    graph.addPass(
+        "output-ready",
+        [&](graph::PassBuilder& b) {
+          b.read(dst, graph::Use::TransferSrc);
+          b.sideEffect();
+        },
+        [](graph::PassContext&) {});
+  }
+
+  Result<RenderOutput> render(const RenderSettings& s) {
+    if (auto begun = beginRun(s); !begun) return begun.error();
+    for (uint32_t f = 0; f < s.frames; ++f) {
+      renderFrame({.readback = f + 1 == s.frames});
+      if (s.progress) s.progress(f + 1, s.frames);
+    }
+    return endRun();
   }
 };
 
@@ -507,5 +601,19 @@ Result<RenderOutput> Renderer::render(const RenderSettings& settings) {
     return makeError(ExitCode::BadArguments, "--mode {} is not implemented yet", modeName(settings.mode));
   return impl_->render(settings);
 }
+
+Status Renderer::beginRun(const RenderSettings& settings) {
+  if (settings.mode != Mode::Hybrid)
+    return makeError(ExitCode::BadArguments, "--mode {} is not implemented yet", modeName(settings.mode));
+  return impl_->beginRun(settings);
+}
+
+FrameStats Renderer::renderFrame(const FrameControl& control) { return impl_->renderFrame(control); }
+
+RenderOutput Renderer::endRun() { return impl_->endRun(); }
+
+const rhi::Image& Renderer::outputImage() const { return impl_->output; }
+
+uint64_t Renderer::deviceBytesUsed() const { return impl_->ctx.memory().stats().usedBytes; }
 
 } // namespace rayster::render
