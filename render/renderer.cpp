@@ -544,7 +544,7 @@ struct Renderer::Impl {
   void copyToOutput(graph::RenderGraph& graph, graph::ImageHandle ldr) {
     const rhi::ImageDesc& d = graph.imageDesc(ldr);
     const rhi::ImageDesc desc{d.format, d.width, d.height, 1,
-                              VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT};
+                              VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT};
     if (!output || !(output.desc() == desc)) {
       output = rhi::Image(ctx, desc, "output");
       outputState = {};
