@@ -25,6 +25,9 @@ struct GpuEnvironment {
   std::array<glm::vec3, 9> irradianceSh{};  // cosine-convolved SH9 of the radiance, × intensity
 };
 
+// The GPU row of one light (lights edited in the viewer are re-encoded with it).
+gpu::LightRecord toRecord(const scene::Light& light);
+
 struct GpuScene {
   struct Draw {
     uint32_t instance;

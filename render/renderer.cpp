@@ -6,6 +6,7 @@
 #include <deque>
 #include <map>
 #include <optional>
+#include <span>
 #include <tuple>
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -446,6 +447,8 @@ struct Renderer::Impl {
       graph::ImageHandle ldr = tonemap(graph, in, hdr, {std::exp2(s.exposureEv), s.tonemap, s.seed});
       if (control.present) copyToOutput(graph, ldr);
       if (last) {
+        aovReadback.clear();  // only the latest readback frame's AOVs are kept
+        aovStates.clear();
         readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));
         readback(graph, hdr, graph.importBuffer("hdr-readback", &hdrReadback, &hdrState));
         // "denoised" stages are the temporal accumulation until the denoisers exist.
@@ -503,12 +506,28 @@ struct Renderer::Impl {
 
   RenderOutput endRun() {
     Run& r = *run;
-    const RenderSettings& s = r.settings;
     RenderOutput out = std::move(r.out);
-    const size_t pixels = size_t(s.width) * s.height;
-    auto [ldrReadback, hdrReadback, aovReadback, passTimes, passOrder] =
-        std::tie(r.ldrReadback, r.hdrReadback, r.aovReadback, r.passTimes, r.passOrder);
+    readImages(out);
+    auto [passTimes, passOrder] = std::tie(r.passTimes, r.passOrder);
 
+    for (const std::string& name : passOrder) {
+      std::vector<double> v = passTimes[name];
+      std::sort(v.begin(), v.end());
+      PassStats ps{name, v[v.size() / 2], v.front(), v[std::min(v.size() - 1, size_t(std::ceil(0.95 * v.size())) - 1)],
+                   uint32_t(v.size())};
+      out.frameMedianMs += ps.medianMs;
+      out.passes.push_back(ps);
+    }
+    run.reset();
+    return out;
+  }
+
+  // The images of the last frame rendered with readback, and the scene's statistics.
+  void readImages(RenderOutput& out) {
+    Run& r = *run;
+    const RenderSettings& s = r.settings;
+    const size_t pixels = size_t(s.width) * s.height;
+    auto [ldrReadback, hdrReadback, aovReadback] = std::tie(r.ldrReadback, r.hdrReadback, r.aovReadback);
     out.scene = {gpu.triangleCount, gpu.sphereCount, gpu.accelStats.builtBytes, gpu.accelStats.compactedBytes,
                  gpu.accelStats.tlasBytes, gpu.uploadMs, gpu.accelBuildMs, 0, 0};
     const rhi::MemoryStats mem = ctx.memory().stats();
@@ -526,17 +545,6 @@ struct Renderer::Impl {
         for (int c = 0; c < 4; ++c) img.rgba[i * 4 + c] = texel(data, format, i, c);
       out.aovs.emplace_back(name, std::move(img));
     }
-
-    for (const std::string& name : passOrder) {
-      std::vector<double> v = passTimes[name];
-      std::sort(v.begin(), v.end());
-      PassStats ps{name, v[v.size() / 2], v.front(), v[std::min(v.size() - 1, size_t(std::ceil(0.95 * v.size())) - 1)],
-                   uint32_t(v.size())};
-      out.frameMedianMs += ps.medianMs;
-      out.passes.push_back(ps);
-    }
-    run.reset();
-    return out;
   }
 
   // Copies the tonemapped image into `output` and leaves it ready as a transfer source, so the
@@ -612,7 +620,22 @@ FrameStats Renderer::renderFrame(const FrameControl& control) { return impl_->re
 
 RenderOutput Renderer::endRun() { return impl_->endRun(); }
 
+RenderOutput Renderer::readbackImages() {
+  RenderOutput out;
+  impl_->readImages(out);
+  return out;
+}
+
 const rhi::Image& Renderer::outputImage() const { return impl_->output; }
+
+void Renderer::refreshLights() {
+  Impl& m = *impl_;
+  std::vector<gpu::LightRecord> rows;
+  for (const scene::Light& l : m.scene.lights) rows.push_back(toRecord(l));
+  if (rows.empty() || rows.size() != m.gpu.lightCount) return;  // edits only, never a new count
+  m.gpu.lights = rhi::createBufferWithData(m.ctx, std::as_bytes(std::span(rows)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                           "lights");
+}
 
 uint64_t Renderer::deviceBytesUsed() const { return impl_->ctx.memory().stats().usedBytes; }
 

@@ -128,10 +128,14 @@ class Renderer {
   Status beginRun(const RenderSettings& settings);
   FrameStats renderFrame(const FrameControl& control);
   RenderOutput endRun();  // images of the last frame rendered with readback, stats over the run
+  RenderOutput readbackImages();  // the same images (no stats) without ending the run
   // The last frame rendered with `present`: RGBA8 holding sRGB-encoded values, in
   // TRANSFER_SRC_OPTIMAL layout, readable by the next submission on the queue.
   const rhi::Image& outputImage() const;
   uint64_t deviceBytesUsed() const;
+  // The scene's lights were edited in place (same number): uploads them again. The next frame
+  // should be a cut, or the denoisers' histories show the old lighting for a while.
+  void refreshLights();
 
  private:
   struct Impl;

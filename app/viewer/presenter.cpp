@@ -96,12 +96,32 @@ void Presenter::resize(VkExtent2D size, bool vsync) {
   createFramebuffers();
 }
 
-bool Presenter::present(const rhi::Image& frame, ImDrawData* ui, Image8* capture) {
+bool Presenter::present(const rhi::Image& rendered, ImDrawData* ui, Image8* capture, const Image8* shown) {
   uint32_t index = 0;
   if (!swapchain_.acquire(index)) return false;
   const VkImage target = swapchain_.image(index);
   const VkExtent2D e = swapchain_.extent();
   VkCommandBuffer cmd = commands_.begin();
+  if (shown) {
+    const rhi::ImageDesc desc{VK_FORMAT_R8G8B8A8_UNORM, uint32_t(shown->width), uint32_t(shown->height), 1,
+                              VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT};
+    if (!shownImage_ || !(shownImage_.desc() == desc)) shownImage_ = rhi::Image(ctx_, desc, "debug-view");
+    if (!shownStaging_ || shownStaging_.size() < shown->rgba.size())
+      shownStaging_ = rhi::Buffer(ctx_, shown->rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, rhi::MemoryUsage::Upload,
+                                  "debug-view-staging");
+    std::memcpy(shownStaging_.mapped(), shown->rgba.data(), shown->rgba.size());
+    imageBarrier(cmd, shownImage_.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {desc.width, desc.height, 1};
+    vkCmdCopyBufferToImage(cmd, shownStaging_.handle(), shownImage_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                           &region);
+    imageBarrier(cmd, shownImage_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                 VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                 VK_ACCESS_2_TRANSFER_READ_BIT);
+  }
+  const rhi::Image& frame = shown ? shownImage_ : rendered;
   imageBarrier(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   // The frame was rendered at the swapchain's size, except on the frame a resize arrives: then it

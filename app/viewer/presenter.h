@@ -27,7 +27,8 @@ class Presenter {
   // Presents `frame` (TRANSFER_SRC_OPTIMAL, from Renderer::outputImage) with `ui` drawn over it.
   // With `capture`, also returns the presented pixels. False when the swapchain was out of date
   // (nothing was presented; resize and render again).
-  bool present(const rhi::Image& frame, ImDrawData* ui, Image8* capture);
+  // `shown`, when given, replaces the frame (debug views read back on the CPU; RGBA, sRGB-encoded).
+  bool present(const rhi::Image& frame, ImDrawData* ui, Image8* capture, const Image8* shown = nullptr);
 
  private:
   void createFramebuffers();
@@ -38,6 +39,8 @@ class Presenter {
   VkRenderPass uiPass_ = VK_NULL_HANDLE;
   std::vector<VkFramebuffer> framebuffers_;
   rhi::Buffer captureBuffer_;
+  rhi::Buffer shownStaging_;
+  rhi::Image shownImage_;
 };
 
 } // namespace rayster::app

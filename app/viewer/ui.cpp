@@ -14,7 +14,7 @@ namespace rayster::app {
 namespace {
 
 constexpr size_t kHistoryFrames = 240;  // rolling graph: a few seconds at interactive rates
-constexpr float kPanelWidth = 330.0f;
+constexpr float kPanelWidth = 300.0f;
 
 void checkResult(VkResult r) { VK_CHECK(r); }
 
@@ -75,7 +75,7 @@ ImDrawData* Ui::draw() {
   return ImGui::GetDrawData();
 }
 
-bool Ui::build(PanelState& st, CameraControl& camera, const scene::Scene& scene, const std::string& device) {
+bool Ui::build(PanelState& st, CameraControl& camera, scene::Scene& scene, const std::string& device) {
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
@@ -85,6 +85,7 @@ bool Ui::build(PanelState& st, CameraControl& camera, const scene::Scene& scene,
   ImGui::SetNextWindowSize({kPanelWidth, 0}, ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowBgAlpha(0.85f);
   ImGui::Begin("Rayster");
+  ImGui::PushItemWidth(kPanelWidth * 0.5f);
   if (!st.message.empty()) ImGui::TextColored({1.0f, 0.4f, 0.3f, 1.0f}, "%s", st.message.c_str());
   ImGui::Text("%s", device.c_str());
   ImGui::Text("%ux%u  %.1f ms CPU  %.2f ms GPU", s.width, s.height, st.cpuHistory.empty() ? 0.0f : st.cpuHistory.back(),
@@ -105,8 +106,17 @@ bool Ui::build(PanelState& st, CameraControl& camera, const scene::Scene& scene,
     ImGui::Combo("tonemapper", &tone, "ACES\0PBR Neutral\0");
     s.tonemap = tone == 1 ? render::Tonemapper::Neutral : render::Tonemapper::Aces;
     ImGui::Checkbox("vsync", &st.vsync);
+    // Every G-buffer channel and every pass's raw and denoised output (render::aovNames()).
+    const auto& names = render::aovNames();
+    const char* current = st.debugView == 0 ? "final image" : names[size_t(st.debugView - 1)].c_str();
+    if (ImGui::BeginCombo("view", current)) {
+      if (ImGui::Selectable("final image", st.debugView == 0)) st.debugView = 0;
+      for (size_t i = 0; i < names.size(); ++i)
+        if (ImGui::Selectable(names[i].c_str(), st.debugView == int(i + 1))) st.debugView = int(i + 1);
+      ImGui::EndCombo();
+    }
   }
-  if (ImGui::CollapsingHeader("Effects", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (ImGui::CollapsingHeader("Effects")) {
     int shadowLights = int(s.shadowLights);
     ImGui::SliderInt("shadow layers", &shadowLights, 0, 8);
     s.shadowLights = uint32_t(shadowLights);
@@ -135,13 +145,29 @@ bool Ui::build(PanelState& st, CameraControl& camera, const scene::Scene& scene,
     }
     if (!scene.cameraPath.empty()) ImGui::Checkbox("play camera path (P)", &st.playPath);
   }
+  st.lightsChanged = false;
+  if (!scene.lights.empty() && ImGui::CollapsingHeader("Lights")) {
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+      scene::Light& l = scene.lights[i];
+      ImGui::PushID(int(i));
+      if (ImGui::TreeNode(l.name.empty() ? ("light " + std::to_string(i)).c_str() : l.name.c_str())) {
+        bool& c = st.lightsChanged;
+        if (l.type != scene::LightType::Directional) c |= ImGui::DragFloat3("position", &l.position.x, 0.05f);
+        c |= ImGui::ColorEdit3("colour", &l.color.x);
+        c |= ImGui::DragFloat("intensity", &l.intensity, 0.05f * std::max(1.0f, l.intensity), 0.0f, 1e7f);
+        c |= ImGui::DragFloat("radius", &l.radius, 0.005f, 0.0f, 100.0f);
+        ImGui::TreePop();
+      }
+      ImGui::PopID();
+    }
+  }
   if (ImGui::CollapsingHeader("GPU timings", ImGuiTreeNodeFlags_DefaultOpen)) {
     double longest = 0.0;
     for (const auto& [name, ms] : st.passes) longest = std::max(longest, ms);
     for (const auto& [name, ms] : st.passes) {
       char overlay[64];
       std::snprintf(overlay, sizeof overlay, "%.3f ms", ms);
-      ImGui::ProgressBar(longest > 0 ? float(ms / longest) : 0.0f, {140.0f, 0.0f}, overlay);
+      ImGui::ProgressBar(longest > 0 ? float(ms / longest) : 0.0f, {kPanelWidth * 0.45f, 0.0f}, overlay);
       ImGui::SameLine();
       ImGui::TextUnformatted(name.c_str());
     }
@@ -149,9 +175,11 @@ bool Ui::build(PanelState& st, CameraControl& camera, const scene::Scene& scene,
     if (!gpu.empty())
       ImGui::PlotLines("##gpu", gpu.data(), int(gpu.size()), 0, "GPU ms per frame", 0.0f, FLT_MAX, {kPanelWidth - 20, 60});
   }
+  ImGui::PopItemWidth();
   ImGui::End();
   // Render settings that change the image restart the run; vsync and the camera do not.
-  return before.mode != s.mode || before.primary != s.primary || before.taa != s.taa ||
+  s.aovs = st.debugView ? std::vector<std::string>{render::aovNames()[size_t(st.debugView - 1)]} : std::vector<std::string>{};
+  return before.aovs != s.aovs || before.mode != s.mode || before.primary != s.primary || before.taa != s.taa ||
          before.exposureEv != s.exposureEv || before.tonemap != s.tonemap || before.shadowLights != s.shadowLights ||
          before.glossyThreshold != s.glossyThreshold || before.mirrorRoughness != s.mirrorRoughness ||
          before.ao != s.ao || before.aoRadius != s.aoRadius || before.indirect != s.indirect;

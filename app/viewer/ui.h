@@ -27,6 +27,8 @@ struct PanelState {
   int namedCamera = -1;    // set when a named camera is picked: the viewer jumps to it
   bool frameScene = false; // "frame the scene" pressed
   bool screenshot = false; // "screenshot" pressed
+  bool lightsChanged = false;  // a light of the scene was edited in place
+  int debugView = 0;           // 0: the final image; i: render::aovNames()[i - 1], read back each frame
   std::string message;     // errors and notices, shown in red at the top
   // Statistics of the last frames.
   std::vector<std::pair<std::string, double>> passes;
@@ -43,7 +45,7 @@ class Ui {
   Ui& operator=(const Ui&) = delete;
 
   // Builds the panel; returns true when a render setting changed.
-  bool build(PanelState& state, CameraControl& camera, const scene::Scene& scene, const std::string& device);
+  bool build(PanelState& state, CameraControl& camera, scene::Scene& scene, const std::string& device);
   ImDrawData* draw();  // finishes the frame's UI
   bool wantsMouse() const;
   bool wantsKeyboard() const;

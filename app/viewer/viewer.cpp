@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -23,6 +24,7 @@
 namespace rayster::app {
 
 void recordHistory(std::deque<float>& history, float value);
+ImageF aovForDisplay(const std::string& name, ImageF img);  // render_command.cpp
 
 namespace {
 
@@ -141,6 +143,10 @@ int runViewer(const ViewOptions& o) {
         for (int k = 0; k < 9; ++k)
           if (keys.pressed(w, GLFW_KEY_1 + k) && k < int(scene->cameras.size())) st.namedCamera = k;
       }
+      if (st.lightsChanged) {
+        renderer->refreshLights();
+        cut = true;
+      }
       if (st.namedCamera >= 0) {
         camera.reset(scene->cameras[size_t(st.namedCamera)]);
         st.namedCamera = -1;
@@ -172,7 +178,7 @@ int runViewer(const ViewOptions& o) {
       if (!st.playPath) control.camera = camera.camera();
       control.cut = cut;
       control.present = true;
-      control.readback = shoot;
+      control.readback = shoot || st.debugView != 0;
       cut = false;
       const render::FrameStats stats = renderer->renderFrame(control);
       if (st.playPath) camera.reset(stats.camera);  // leaving the path continues from where it is
@@ -182,9 +188,19 @@ int runViewer(const ViewOptions& o) {
       st.raysPerFrame = estimateRays(stats, size.width * size.height, std::min(8u, st.settings.shadowLights));
       st.deviceBytes = renderer->deviceBytesUsed();
 
+      // A debug view shows one stage, read back and mapped for display as `--aov` PNGs are.
+      std::optional<Image8> debugImage;
+      if (st.debugView != 0) {
+        render::RenderOutput images = renderer->readbackImages();
+        if (!images.aovs.empty())
+          debugImage = encodeSrgb8(aovForDisplay(images.aovs.front().first, std::move(images.aovs.front().second)));
+        else
+          st.message = "this scene has no " + render::aovNames()[size_t(st.debugView - 1)];
+      }
       ImDrawData* drawData = ui.draw();
       Image8 captured;
-      if (!presenter.present(renderer->outputImage(), showUi ? drawData : nullptr, shoot ? &captured : nullptr))
+      if (!presenter.present(renderer->outputImage(), showUi ? drawData : nullptr, shoot ? &captured : nullptr,
+                             debugImage ? &*debugImage : nullptr))
         restart = true;  // out of date: the next iteration resizes
       if (shoot) {
         std::string path = lastFrame && !o.screenshot.empty() ? o.screenshot : "rayster-screenshot-" + std::to_string(frame) + ".png";
