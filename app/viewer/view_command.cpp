@@ -30,6 +30,8 @@ void addViewCommand(CLI::App& cli, ViewCommand& v) {
   view->add_option("--exposure", o.settings.exposureEv, "Exposure in EV stops");
   view->add_option("--seed", o.settings.seed, "Random seed");
   view->add_flag("--camera-path", o.settings.cameraPath, "Play the scene's camera path");
+  view->add_option("--path-fps", o.settings.pathFps, "Frames per second of path playback (default 60)")
+      ->check(CLI::Range(1.0f, 10000.0f));
   view->fallthrough();
 }
 

@@ -19,6 +19,7 @@
 #include "core/image_io.h"
 #include "core/log.h"
 #include "rhi/context.h"
+#include "rhi/vk_check.h"
 #include "scene/loader.h"
 
 namespace rayster::app {
@@ -53,6 +54,14 @@ uint64_t estimateRays(const render::FrameStats& stats, uint32_t pixels, uint32_t
     else if (name.rfind("rt-", 0) == 0 || name == "gbuffer-traced") rays += pixels;
   }
   return rays;
+}
+
+// Device loss and memory exhaustion end the process (rhi/vk_check.h); the window says why first.
+GLFWwindow* gFatalWindow = nullptr;
+void showFatal(const char* message) {
+  if (!gFatalWindow) return;
+  glfwSetWindowTitle(gFatalWindow, (std::string("Rayster: error: ") + message + " (exiting)").c_str());
+  for (int i = 0; i < 30; ++i) glfwWaitEventsTimeout(0.1);  // three seconds to read it
 }
 
 const scene::Camera& startCamera(const scene::Scene& scene, const std::string& name) {
@@ -92,6 +101,8 @@ int runViewer(const ViewOptions& o) {
     uint32_t frame = 0;
     auto last = std::chrono::steady_clock::now();
     GLFWwindow* w = window.handle();
+    gFatalWindow = w;
+    rhi::setFatalHook(showFatal);
 
     while (!window.shouldClose()) {
       window.poll();
@@ -219,6 +230,8 @@ int runViewer(const ViewOptions& o) {
       if (lastFrame) break;
     }
     vk.waitIdle();
+    rhi::setFatalHook(nullptr);
+    gFatalWindow = nullptr;
   }
   if (vk.validationEnabled() && vk.validationErrors() > 0) {
     std::fprintf(stderr, "rayster: error: %u Vulkan validation error(s)\n", vk.validationErrors());

@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
@@ -50,6 +51,28 @@ TEST(Viewer, ScreenshotMatchesHeadlessRender) {
   ASSERT_EQ(viewed->height, kHeight);
   EXPECT_FALSE(rejectEmpty(*viewed, kWidth, kHeight).has_value());
   // Same graph, same settings: the images agree to within the 8-bit rounding of the blit.
+  const ImageDiff d = compare(*rendered, *viewed, 1);
+  EXPECT_GE(d.fractionWithinTolerance, 0.999) << "max difference " << d.maxChannelDiff;
+}
+
+TEST(Viewer, ScriptedCameraPathMatchesHeadlessRender) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (scripts/setup.sh installs xvfb and xauth)";
+  const auto dir = testDir();
+  auto file = dir / "path.json";
+  std::ofstream(file) << R"({
+  "models": [{"path": "builtin:cornell"}],
+  "cameraPath": [{"time": 0, "position": [0, 1, 3.9], "target": [0, 1, 0]},
+                 {"time": 1, "position": [0.6, 1.2, 3.6], "target": [0, 1, 0]}]
+})";
+  const std::string common = file.string() + " --primary raster --camera-path --path-fps 10 --frames 5 --size 128x96";
+  RunResult v = runUnderXvfb("view " + common + " --hide-ui --screenshot " + (dir / "view.png").string());
+  ASSERT_EQ(v.exitCode, 0) << v.output;
+  RunResult h = runRayster("render " + common + " -o " + (dir / "render.png").string());
+  ASSERT_EQ(h.exitCode, 0) << h.output;
+  auto viewed = readPng(dir / "view.png");
+  auto rendered = readPng(dir / "render.png");
+  ASSERT_TRUE(viewed.ok() && rendered.ok());
+  EXPECT_FALSE(rejectEmpty(*viewed, 128, 96).has_value());
   const ImageDiff d = compare(*rendered, *viewed, 1);
   EXPECT_GE(d.fractionWithinTolerance, 0.999) << "max difference " << d.maxChannelDiff;
 }
