@@ -82,9 +82,10 @@ bool Ui::build(PanelState& st, CameraControl& camera, scene::Scene& scene, const
   render::RenderSettings& s = st.settings;
   const render::RenderSettings before = s;
   ImGui::SetNextWindowPos({8, 8}, ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize({kPanelWidth, 0}, ImGuiCond_FirstUseEver);
+  // The panel fits its contents, up to the window's height (then it scrolls).
+  ImGui::SetNextWindowSizeConstraints({kPanelWidth, 0.0f}, {kPanelWidth, ImGui::GetIO().DisplaySize.y - 16.0f});
   ImGui::SetNextWindowBgAlpha(0.85f);
-  ImGui::Begin("Rayster");
+  ImGui::Begin("Rayster", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::PushItemWidth(kPanelWidth * 0.5f);
   if (!st.message.empty()) ImGui::TextColored({1.0f, 0.4f, 0.3f, 1.0f}, "%s", st.message.c_str());
   ImGui::Text("%s", device.c_str());

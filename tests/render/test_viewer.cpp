@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "render/run_rayster.h"
+#include "tests/render/run_rayster.h"
 
 namespace rayster::test {
 namespace {
