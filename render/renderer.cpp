@@ -387,7 +387,7 @@ struct Renderer::Impl {
       const bool last = control.readback;
       graph::RenderGraph graph(&ctx, &transients);
       FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, gpu.bindless->set()};
-      bool moving = s.cameraPath;
+      bool moving = s.cameraPath || control.moving;
       if (animated) {
         const bool moved = poseAnimation(s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0);
         // Motion vectors of this frame still show last frame's motion after the pose stops.

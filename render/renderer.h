@@ -105,6 +105,7 @@ struct RenderOutput {
 struct FrameControl {
   std::optional<scene::Camera> camera;  // overrides the settings' camera and path for this frame
   bool cut = false;                     // start a new shot: every history restarts
+  bool moving = false;                  // the camera moves: denoisers keep short histories
   bool readback = false;                // read the LDR, HDR and AOVs back (endRun returns them)
   bool present = false;                 // copy the LDR image into outputImage()
 };

@@ -188,12 +188,12 @@ int runViewer(const ViewOptions& o) {
       render::FrameControl control;
       if (!st.playPath) control.camera = camera.camera();
       control.cut = cut;
+      control.moving = moved;
       control.present = true;
       control.readback = shoot || st.debugView != 0;
       cut = false;
       const render::FrameStats stats = renderer->renderFrame(control);
       if (st.playPath) camera.reset(stats.camera);  // leaving the path continues from where it is
-      (void)moved;
       st.passes = stats.passes;
       recordHistory(st.gpuHistory, float(stats.gpuMs));
       st.raysPerFrame = estimateRays(stats, size.width * size.height, std::min(8u, st.settings.shadowLights));
