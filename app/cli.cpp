@@ -11,6 +11,7 @@
 #include "app/commands.h"
 #include "app/compare_command.h"
 #include "app/render_command.h"
+#include "app/viewer/viewer.h"
 #include "core/error.h"
 #include "core/log.h"
 
@@ -180,6 +181,8 @@ int run(int argc, char** argv) {
   compareCmd->add_option("--min-fraction", co.minFraction,
                          "Exit 9 unless at least this fraction of pixels is within tolerance (e.g. 0.999)");
   compareCmd->fallthrough();
+  ViewCommand view;
+  addViewCommand(cli, view);
   render->fallthrough();  // global options (-v, --validation, --device) also after the subcommand
   info->fallthrough();
 
@@ -205,6 +208,7 @@ int run(int argc, char** argv) {
     return benchCommand(bo);
   }
   if (compareCmd->parsed()) return compareCommand(co);
+  if (view.app->parsed()) return viewCommand(view, validation, device, !noLabels);
   if (render->parsed()) {
     if (!parseSize(size, ro.settings.width, ro.settings.height)) {
       std::fprintf(stderr, "rayster: error: --size must be WxH with 1..16384 each, got '%s'\n", size.c_str());

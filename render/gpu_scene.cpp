@@ -27,6 +27,8 @@ rhi::Buffer tableBuffer(rhi::Context& ctx, const std::vector<T>& rows, const cha
   return rhi::createBufferWithData(ctx, std::as_bytes(std::span(rows)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, name);
 }
 
+} // namespace
+
 gpu::LightRecord toRecord(const scene::Light& l) {
   gpu::LightRecord r{};
   r.position = l.position;
@@ -41,6 +43,8 @@ gpu::LightRecord toRecord(const scene::Light& l) {
   r.cosOuter = std::cos(l.outerConeAngle);
   return r;
 }
+
+namespace {
 
 bool alphaTested(const scene::Scene& scene, uint32_t material) {
   return material < scene.materials.size() && scene.materials[material].alphaMode != scene::AlphaMode::Opaque;

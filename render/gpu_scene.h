@@ -29,6 +29,9 @@ struct GpuEnvironment {
   uint32_t cdfWidth = 0, cdfHeight = 0;
 };
 
+// The GPU row of one light (lights edited in the viewer are re-encoded with it).
+gpu::LightRecord toRecord(const scene::Light& light);
+
 struct GpuScene {
   struct Draw {
     uint32_t instance;

@@ -6,6 +6,9 @@
 #include <cstring>
 #include <deque>
 #include <map>
+#include <optional>
+#include <span>
+#include <tuple>
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -64,6 +67,9 @@ float texel(const uint8_t* data, VkFormat format, size_t index, int channel) {
     default: return 0.0f;
   }
 }
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 uint32_t texelBytes(VkFormat format) {
   switch (format) {
@@ -365,13 +371,44 @@ struct Renderer::Impl {
     return out;
   }
 
-  Result<RenderOutput> render(const RenderSettings& s) {
+  // State of one run (render() or a viewer session): what beginRun sets up and each frame advances.
+  struct Run {
+    RenderSettings settings;
+    const scene::Camera* cam = nullptr;
+    RenderOutput out;
+    uint32_t frame = 0;
+    bool animated = false, movedBefore = false;
+    glm::mat4 prevClipFromWorld{1.0f};
+    scene::Camera prevCamera;
+    rhi::Buffer ldrReadback, hdrReadback;
+    graph::ResourceState ldrState, hdrState;
+    struct AovReadback {
+      std::string name;
+      VkFormat format;
+      uint32_t layer;
+      rhi::Buffer buffer;
+    };
+    std::vector<AovReadback> aovReadback;
+    std::deque<graph::ResourceState> aovStates;  // stable addresses for the graph
+    std::map<std::string, std::vector<double>> passTimes;
+    std::vector<std::string> passOrder;
+  };
+  std::optional<Run> run;
+  // The presentable copy of the last frame's LDR image (FrameControl::present).
+  rhi::Image output;
+  graph::ResourceState outputState;
+
+  Status beginRun(const RenderSettings& s) {
     if (s.cameraPath && scene.cameraPath.empty())
       return makeError(ExitCode::BadArguments, "--camera-path: scene '{}' has no camera path", scene.name);
     auto camera = findCamera(s);
     if (!camera) return camera.error();
     const scene::Camera* cam = *camera;
-    RenderOutput out;
+    run.reset();
+    run.emplace();
+    run->settings = s;
+    run->cam = cam;
+    RenderOutput& out = run->out;
     frameIndex = 0;
     const bool rasterMode = s.mode == Mode::Raster;
     out.modeUsed = s.mode;
@@ -394,53 +431,53 @@ struct Renderer::Impl {
     }
 
     ensureHistory(s);
-    const bool animated = scene.animated() && !gpu.instanceRecords.empty();
-    if (animated) {
+    run->animated = scene.animated() && !gpu.instanceRecords.empty();
+    if (run->animated) {
       pose.nodes = scene.nodes;
       pose.instances = scene.instances;
       pose.animations = scene.animations;
     }
-    bool movedBefore = false;
-    taaHistory.valid = false;  // every headless run starts its own history
-    glm::mat4 prevClipFromWorld(1.0f);
-    scene::Camera prevCamera = *cam;
+    taaHistory.valid = false;  // every run starts its own history
+    run->prevCamera = *cam;
     const size_t pixels = size_t(s.width) * s.height;
-    rhi::Buffer ldrReadback(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
-    rhi::Buffer hdrReadback(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "hdr-readback");
-    graph::ResourceState ldrState, hdrState;
-    struct AovReadback {
-      std::string name;
-      VkFormat format;
-      uint32_t layer;
-      rhi::Buffer buffer;
-    };
-    std::vector<AovReadback> aovReadback;
-    std::deque<graph::ResourceState> aovStates;  // stable addresses for the graph
+    run->ldrReadback = rhi::Buffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
+    run->hdrReadback = rhi::Buffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "hdr-readback");
     for (const std::string& name : s.aovs)
       if (std::find(aovNames().begin(), aovNames().end(), name) == aovNames().end())
         return makeError(ExitCode::BadArguments, "unknown AOV '{}'", name);
-    std::map<std::string, std::vector<double>> passTimes;
-    std::vector<std::string> passOrder;
-    using Clock = std::chrono::steady_clock;
-    const auto msSince = [](Clock::time_point t0) {
-      return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-    };
+    return okStatus();
+  }
 
-    for (uint32_t f = 0; f < s.frames; ++f) {
+  FrameStats renderFrame(const FrameControl& control) {
+    Run& r = *run;
+    const RenderSettings& s = r.settings;
+    RenderOutput& out = r.out;
+    const uint32_t f = r.frame++;
+    const bool animated = r.animated;
+    bool& movedBefore = r.movedBefore;
+    glm::mat4& prevClipFromWorld = r.prevClipFromWorld;
+    scene::Camera& prevCamera = r.prevCamera;
+    auto [ldrReadback, hdrReadback, ldrState, hdrState, aovReadback, aovStates] =
+        std::tie(r.ldrReadback, r.hdrReadback, r.ldrState, r.hdrState, r.aovReadback, r.aovStates);
+    const bool rasterMode = s.mode == Mode::Raster;
+    FrameStats stats;
+    {
       const Clock::time_point frameStart = Clock::now();
       frameIndex = f;
-      const scene::Camera camera = s.cameraPath ? cameraOnPath(*cam, s, f) : *cam;
+      const scene::Camera camera = control.camera  ? *control.camera
+                                   : s.cameraPath ? cameraOnPath(*r.cam, s, f)
+                                                  : *r.cam;
       // A cut (the first frame of a run, a jump of the camera, or a listed frame) restarts every history.
-      const bool cut = f == 0 || isCameraCut(prevCamera, camera) ||
+      const bool cut = f == 0 || control.cut || isCameraCut(prevCamera, camera) ||
                        std::find(s.cuts.begin(), s.cuts.end(), f) != s.cuts.end();
       if (cut || !taaHistory.valid) taaFrames = 0;
       const glm::vec2 jitter = s.taa ? jitterNdc(f, s.width, s.height) : glm::vec2(0.0f);
       prevClipFromWorld = writeConstants(s, camera, jitter, cut ? nullptr : &prevClipFromWorld);
       prevCamera = camera;
-      const bool last = f + 1 == s.frames;
+      const bool last = control.readback;
       graph::RenderGraph graph(&ctx, &transients);
       FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, gpu.bindless->set()};
-      bool moving = s.cameraPath;
+      bool moving = s.cameraPath || control.moving;
       if (animated) {
         const bool moved = poseAnimation(s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0);
         // Motion vectors of this frame still show last frame's motion after the pose stops.
@@ -519,14 +556,18 @@ struct Renderer::Impl {
                          {hdr, gb.depth, taaHistory.previous(graph, "taa-history", f),
                           taaHistory.next(graph, "taa-history", f), gb.motion, taaFrames});
       graph::ImageHandle ldr = tonemap(graph, in, hdr, {std::exp2(s.exposureEv), s.tonemap, s.seed});
-      // Every frame's image counts as consumed, as a presented one would be: otherwise the graph culls
-      // tonemapping in all frames but the last (whose readback uses it) and its timings miss them.
-      if (!last)
+      if (control.present)
+        copyToOutput(graph, ldr);
+      else if (!last)
+        // Every frame's image counts as consumed, as a presented one would be: otherwise the graph
+        // culls tonemapping in all frames but the last (whose readback uses it) and its timings miss them.
         graph.addPass("output", [&](graph::PassBuilder& b) {
           b.read(ldr, graph::Use::TransferSrc);
           b.sideEffect();
         }, [](graph::PassContext&) {});
       if (last) {
+        aovReadback.clear();  // only the latest readback frame's AOVs are kept
+        aovStates.clear();
         readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));
         readback(graph, hdr, graph.importBuffer("hdr-readback", &hdrReadback, &hdrState));
         // "denoised" stages are the temporal accumulation until the denoisers exist.
@@ -552,7 +593,7 @@ struct Renderer::Impl {
             continue;
           }
           const rhi::ImageDesc& d = graph.imageDesc(it->second.first);
-          aovReadback.push_back({name, d.format, it->second.second,
+          aovReadback.push_back(Run::AovReadback{name, d.format, it->second.second,
                                  rhi::Buffer(ctx, size_t(d.width) * d.height * texelBytes(d.format) * d.layers,
                                              VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
                                              "aov-readback")});
@@ -574,11 +615,14 @@ struct Renderer::Impl {
       const bool measured = f >= s.warmupFrames || s.warmupFrames >= s.frames;  // never an empty sample
       double gpuMs = 0;
       for (auto& t : timers.read()) {
-        if (t.name == "readback" || t.name == "host-visible" || t.name == "output" || !measured) continue;
-        if (!passTimes.count(t.name)) passOrder.push_back(t.name);
-        passTimes[t.name].push_back(t.ms);
+        if (t.name == "readback" || t.name == "host-visible" || t.name.rfind("output", 0) == 0) continue;
+        stats.passes.emplace_back(t.name, t.ms);
         if (t.name.rfind("raw-", 0) != 0) gpuMs += t.ms;  // raw-rate passes are not part of the frame
+        if (!measured) continue;
+        if (!r.passTimes.count(t.name)) r.passOrder.push_back(t.name);
+        r.passTimes[t.name].push_back(t.ms);
       }
+      stats.gpuMs = gpuMs;
       if (measured) {
         out.frameGpuMs.push_back(gpuMs);
         out.frameCpuMs.push_back(cpuMs);
@@ -589,24 +633,19 @@ struct Renderer::Impl {
         taaHistory.valid = true;
         ++taaFrames;
       }
-      if (s.progress) s.progress(f + 1, s.frames);
+      stats.primaryUsed = out.primaryUsed;
+      stats.camera = camera;
     }
+    return stats;
+  }
 
-    out.scene = sceneStats();
-    out.shadowLayers = shadowLights();
-    out.ldr = Image8::make(int(s.width), int(s.height));
-    std::memcpy(out.ldr.rgba.data(), ldrReadback.mapped(), pixels * 4);
-    out.hdr = ImageF::make(int(s.width), int(s.height));
-    const uint16_t* halves = static_cast<const uint16_t*>(hdrReadback.mapped());
-    for (size_t i = 0; i < pixels * 4; ++i) out.hdr.rgba[i] = halfToFloat(halves[i]);
-    for (auto& [name, format, layer, buffer] : aovReadback) {
-      ImageF img = ImageF::make(int(s.width), int(s.height));
-      const uint8_t* data = static_cast<const uint8_t*>(buffer.mapped()) + size_t(layer) * pixels * texelBytes(format);
-      for (size_t i = 0; i < pixels; ++i)
-        for (int c = 0; c < 4; ++c) img.rgba[i * 4 + c] = texel(data, format, i, c);
-      out.aovs.emplace_back(name, std::move(img));
-    }
+  RenderOutput endRun() {
+    Run& r = *run;
+    RenderOutput out = std::move(r.out);
+    readImages(out);
+    auto [passTimes, passOrder] = std::tie(r.passTimes, r.passOrder);
 
+    const RenderSettings& s = r.settings;
     const uint32_t lightsPerHit = manyLights ? 1u : gpu.lightCount;
     const uint32_t bounces = specularBounces(s);
     for (const std::string& name : passOrder) {
@@ -622,7 +661,73 @@ struct Renderer::Impl {
       if (name.rfind("raw-", 0) != 0) out.frameMedianMs += ps.medianMs;
       out.passes.push_back(ps);
     }
+    run.reset();
     return out;
+  }
+
+  // The images of the last frame rendered with readback, and the scene's statistics.
+  void readImages(RenderOutput& out) {
+    Run& r = *run;
+    const RenderSettings& s = r.settings;
+    const size_t pixels = size_t(s.width) * s.height;
+    auto [ldrReadback, hdrReadback, aovReadback] = std::tie(r.ldrReadback, r.hdrReadback, r.aovReadback);
+    out.scene = sceneStats();
+    out.shadowLayers = shadowLights();
+    out.ldr = Image8::make(int(s.width), int(s.height));
+    std::memcpy(out.ldr.rgba.data(), ldrReadback.mapped(), pixels * 4);
+    out.hdr = ImageF::make(int(s.width), int(s.height));
+    const uint16_t* halves = static_cast<const uint16_t*>(hdrReadback.mapped());
+    for (size_t i = 0; i < pixels * 4; ++i) out.hdr.rgba[i] = halfToFloat(halves[i]);
+    for (auto& [name, format, layer, buffer] : aovReadback) {
+      ImageF img = ImageF::make(int(s.width), int(s.height));
+      const uint8_t* data = static_cast<const uint8_t*>(buffer.mapped()) + size_t(layer) * pixels * texelBytes(format);
+      for (size_t i = 0; i < pixels; ++i)
+        for (int c = 0; c < 4; ++c) img.rgba[i * 4 + c] = texel(data, format, i, c);
+      out.aovs.emplace_back(name, std::move(img));
+    }
+  }
+
+  // Copies the tonemapped image into `output` and leaves it ready as a transfer source, so the
+  // caller's next submission can blit it (the next frame's copy waits for that read).
+  void copyToOutput(graph::RenderGraph& graph, graph::ImageHandle ldr) {
+    const rhi::ImageDesc& d = graph.imageDesc(ldr);
+    const rhi::ImageDesc desc{d.format, d.width, d.height, 1,
+                              VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT};
+    if (!output || !(output.desc() == desc)) {
+      output = rhi::Image(ctx, desc, "output");
+      outputState = {};
+    }
+    graph::ImageHandle dst = graph.importImage("output", &output, &outputState);
+    graph.addPass(
+        "output-copy",
+        [&](graph::PassBuilder& b) {
+          b.read(ldr, graph::Use::TransferSrc);
+          b.write(dst, graph::Use::TransferDst);
+        },
+        [ldr, dst](graph::PassContext& pc) {
+          const rhi::Image& src = pc.image(ldr);
+          VkImageCopy region{};
+          region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+          region.extent = {src.desc().width, src.desc().height, 1};
+          vkCmdCopyImage(pc.cmd, src.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, pc.image(dst).handle(),
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        });
+    graph.addPass(
+        "output-ready",
+        [&](graph::PassBuilder& b) {
+          b.read(dst, graph::Use::TransferSrc);
+          b.sideEffect();
+        },
+        [](graph::PassContext&) {});
+  }
+
+  Result<RenderOutput> render(const RenderSettings& s) {
+    if (auto begun = beginRun(s); !begun) return begun.error();
+    for (uint32_t f = 0; f < s.frames; ++f) {
+      renderFrame({.readback = f + 1 == s.frames});
+      if (s.progress) s.progress(f + 1, s.frames);
+    }
+    return endRun();
   }
 };
 
@@ -647,5 +752,34 @@ Result<RenderOutput> Renderer::render(const RenderSettings& settings) {
   if (settings.mode == Mode::PathTrace) return impl_->renderPathTraced(settings);
   return impl_->render(settings);
 }
+
+Status Renderer::beginRun(const RenderSettings& settings) {
+  if (settings.mode != Mode::Hybrid)
+    return makeError(ExitCode::BadArguments, "--mode {} is not implemented yet", modeName(settings.mode));
+  return impl_->beginRun(settings);
+}
+
+FrameStats Renderer::renderFrame(const FrameControl& control) { return impl_->renderFrame(control); }
+
+RenderOutput Renderer::endRun() { return impl_->endRun(); }
+
+RenderOutput Renderer::readbackImages() {
+  RenderOutput out;
+  impl_->readImages(out);
+  return out;
+}
+
+const rhi::Image& Renderer::outputImage() const { return impl_->output; }
+
+void Renderer::refreshLights() {
+  Impl& m = *impl_;
+  std::vector<gpu::LightRecord> rows;
+  for (const scene::Light& l : m.scene.lights) rows.push_back(toRecord(l));
+  if (rows.empty() || rows.size() != m.gpu.lightCount) return;  // edits only, never a new count
+  m.gpu.lights = rhi::createBufferWithData(m.ctx, std::as_bytes(std::span(rows)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                           "lights");
+}
+
+uint64_t Renderer::deviceBytesUsed() const { return impl_->ctx.memory().stats().usedBytes; }
 
 } // namespace rayster::render

@@ -16,6 +16,7 @@
 
 namespace rayster::rhi {
 class Context;
+class Image;
 }
 
 namespace rayster::render {
@@ -133,12 +134,43 @@ struct RenderOutput {
   } scene;
 };
 
+// What may change from one frame of a run to the next (the viewer drives these).
+struct FrameControl {
+  std::optional<scene::Camera> camera;  // overrides the settings' camera and path for this frame
+  bool cut = false;                     // start a new shot: every history restarts
+  bool moving = false;                  // the camera moves: denoisers keep short histories
+  bool readback = false;                // read the LDR, HDR and AOVs back (endRun returns them)
+  bool present = false;                 // copy the LDR image into outputImage()
+};
+
+// One frame's GPU time per pass, from the graph's timestamps.
+struct FrameStats {
+  std::vector<std::pair<std::string, double>> passes;
+  double gpuMs = 0;
+  Primary primaryUsed = Primary::Raster;
+  scene::Camera camera;  // the camera the frame was rendered with
+};
+
 class Renderer {
  public:
   static Result<std::unique_ptr<Renderer>> create(rhi::Context& ctx, const scene::Scene& scene);
   ~Renderer();
-  // Mode::Hybrid or Mode::PathTrace (render/path_tracer.h); Mode::Raster is refused for now.
+  // Renders settings.frames frames headless: beginRun, renderFrame for each, endRun (hybrid and
+  // raster modes); Mode::PathTrace renders the reference (render/path_tracer.h).
   Result<RenderOutput> render(const RenderSettings& settings);
+
+  // Incremental rendering, one frame at a time (the viewer). beginRun restarts every history.
+  Status beginRun(const RenderSettings& settings);
+  FrameStats renderFrame(const FrameControl& control);
+  RenderOutput endRun();  // images of the last frame rendered with readback, stats over the run
+  RenderOutput readbackImages();  // the same images (no stats) without ending the run
+  // The last frame rendered with `present`: RGBA8 holding sRGB-encoded values, in
+  // TRANSFER_SRC_OPTIMAL layout, readable by the next submission on the queue.
+  const rhi::Image& outputImage() const;
+  uint64_t deviceBytesUsed() const;
+  // The scene's lights were edited in place (same number): uploads them again. The next frame
+  // should be a cut, or the denoisers' histories show the old lighting for a while.
+  void refreshLights();
 
  private:
   struct Impl;

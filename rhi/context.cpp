@@ -102,6 +102,12 @@ DeviceInfo describe(VkPhysicalDevice pd) {
   return info;
 }
 
+bool canPresent(VkPhysicalDevice pd, uint32_t family, VkSurfaceKHR surface) {
+  if (!surface) return true;
+  VkBool32 supported = VK_FALSE;
+  return vkGetPhysicalDeviceSurfaceSupportKHR(pd, family, surface, &supported) == VK_SUCCESS && supported;
+}
+
 int score(const DeviceInfo& d) {
   int s = 0;
   if (d.type == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU) s += 1000;
@@ -110,7 +116,8 @@ int score(const DeviceInfo& d) {
   return s;
 }
 
-Result<VkInstance> createInstance(bool validation, bool labels, bool& debugUtils) {
+Result<VkInstance> createInstance(bool validation, bool labels, bool& debugUtils,
+                                  const std::vector<std::string>& required = {}) {
   if (volkInitialize() != VK_SUCCESS)
     return makeError(ExitCode::NoDevice, "no Vulkan loader found (libvulkan.so.1); install a Vulkan driver");
   if (volkGetInstanceVersion() < VK_API_VERSION_1_3)
@@ -123,6 +130,11 @@ Result<VkInstance> createInstance(bool validation, bool labels, bool& debugUtils
   std::vector<const char*> exts;
   debugUtils = (validation || labels) && hasExtension(available, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   if (debugUtils) exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  for (const std::string& name : required) {
+    if (!hasExtension(available, name.c_str()))
+      return makeError(ExitCode::NoDevice, "the Vulkan loader lacks {} (needed for a window)", name);
+    exts.push_back(name.c_str());
+  }
 
   std::vector<const char*> layers;
   if (validation) {
@@ -197,9 +209,13 @@ Result<std::vector<DeviceInfo>> Context::listDevices() {
 
 Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
   std::unique_ptr<Context> ctx(new Context());
-  auto instance = createInstance(options.validation, options.debugLabels, ctx->debugUtils_);
+  auto instance = createInstance(options.validation, options.debugLabels, ctx->debugUtils_, options.instanceExtensions);
   if (!instance) return instance.error();
   ctx->instance_ = *instance;
+  if (options.createSurface) {
+    VkResult sr = options.createSurface(ctx->instance_, &ctx->surface_);
+    if (sr != VK_SUCCESS) return makeError(ExitCode::NoDevice, "cannot create a window surface: {}", resultName(sr));
+  }
   ctx->validation_ = options.validation;
   if (options.validation && ctx->debugUtils_) {
     VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
@@ -244,7 +260,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
   vkGetPhysicalDeviceQueueFamilyProperties(ctx->info_.handle, &qn, qf.data());
   ctx->queueFamily_ = UINT32_MAX;
   for (uint32_t i = 0; i < qn; ++i)
-    if ((qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) {
+    if ((qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT) &&
+        canPresent(ctx->info_.handle, i, ctx->surface_)) {
       ctx->queueFamily_ = i;
       break;
     }
@@ -254,6 +271,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
 
   const bool rt = ctx->info_.caps.rayTracing();
   std::vector<const char*> exts = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+  if (ctx->surface_) exts.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
   if (rt) exts.insert(exts.end(), std::begin(kRayTracingExtensions), std::end(kRayTracingExtensions));
 
   VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
@@ -326,24 +344,34 @@ Context::~Context() {
     vkDestroySemaphore(device_, timeline_, nullptr);
     vkDestroyDevice(device_, nullptr);
   }
+  if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
   if (messenger_) vkDestroyDebugUtilsMessengerEXT(instance_, messenger_, nullptr);
   if (instance_) vkDestroyInstance(instance_, nullptr);
 }
 
 uint32_t Context::validationErrors() const { return gValidationErrors.load(); }
 
-uint64_t Context::submit(VkCommandBuffer cmd) {
+uint64_t Context::submit(VkCommandBuffer cmd) { return submit(cmd, VK_NULL_HANDLE, VK_NULL_HANDLE); }
+
+uint64_t Context::submit(VkCommandBuffer cmd, VkSemaphore wait, VkSemaphore signalBinary) {
   VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cbi.commandBuffer = cmd;
-  VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
-  signal.semaphore = timeline_;
-  signal.value = ++submitted_;
-  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  VkSemaphoreSubmitInfo signals[2] = {{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO}, {VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO}};
+  signals[0].semaphore = timeline_;
+  signals[0].value = ++submitted_;
+  signals[0].stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  signals[1].semaphore = signalBinary;
+  signals[1].stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  VkSemaphoreSubmitInfo waitInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  waitInfo.semaphore = wait;
+  waitInfo.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
   VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
   si.commandBufferInfoCount = 1;
   si.pCommandBufferInfos = &cbi;
-  si.signalSemaphoreInfoCount = 1;
-  si.pSignalSemaphoreInfos = &signal;
+  si.signalSemaphoreInfoCount = signalBinary ? 2 : 1;
+  si.pSignalSemaphoreInfos = signals;
+  si.waitSemaphoreInfoCount = wait ? 1 : 0;
+  si.pWaitSemaphoreInfos = &waitInfo;
   VK_CHECK(vkQueueSubmit2(queue_, 1, &si, VK_NULL_HANDLE));
   return submitted_;
 }

@@ -48,6 +48,11 @@ struct ContextOptions {
   bool requireRayTracing = true;  // fail with MissingCapability when absent
   std::string deviceFilter;       // substring of the device name to prefer; empty: best device
   bool debugLabels = true;        // pass labels and object names for captures and validation messages
+  // Windowed use only (headless needs no surface): the window system's instance extensions and a
+  // callback that creates the window's surface; the device then also gets VK_KHR_swapchain and a
+  // queue that can present to that surface.
+  std::vector<std::string> instanceExtensions;
+  std::function<VkResult(VkInstance, VkSurfaceKHR*)> createSurface;
 };
 
 class Context {
@@ -63,6 +68,7 @@ class Context {
   VkDevice device() const { return device_; }
   VkPhysicalDevice physicalDevice() const { return info_.handle; }
   VkQueue queue() const { return queue_; }
+  VkSurfaceKHR surface() const { return surface_; }  // VK_NULL_HANDLE when headless
   uint32_t queueFamily() const { return queueFamily_; }
   const DeviceInfo& info() const { return info_; }
   const Capabilities& caps() const { return info_.caps; }
@@ -73,6 +79,9 @@ class Context {
 
   // Submits command buffers on the queue, signalling the timeline; returns the value to wait for.
   uint64_t submit(VkCommandBuffer cmd);
+  // The same, also waiting for `wait` (binary, e.g. an acquired swapchain image) before any command
+  // and signalling the binary semaphore `signal` (e.g. for presentation).
+  uint64_t submit(VkCommandBuffer cmd, VkSemaphore wait, VkSemaphore signal);
   void wait(uint64_t timelineValue);
   void waitIdle();
   // Runs `destroy` once the GPU has finished every submission made so far.
@@ -89,6 +98,7 @@ class Context {
   Context() = default;
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkSurfaceKHR surface_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;
   uint32_t queueFamily_ = 0;

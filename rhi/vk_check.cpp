@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 #include "core/error.h"
 
@@ -40,6 +41,12 @@ const char* resultName(VkResult r) {
   }
 }
 
+namespace {
+FatalHook gFatalHook = nullptr;
+}
+
+void setFatalHook(FatalHook hook) { gFatalHook = hook; }
+
 void vkFailure(VkResult r, const char* expr, const char* file, int line) {
   ExitCode code = ExitCode::Failure;
   const char* what = "Vulkan call failed";
@@ -53,6 +60,7 @@ void vkFailure(VkResult r, const char* expr, const char* file, int line) {
   std::fprintf(stderr, "rayster: error: %s: %s returned %s (%s:%d)\n", what, expr, resultName(r), file, line);
   std::fflush(stderr);
   if (code == ExitCode::Failure) std::abort();
+  if (FatalHook hook = std::exchange(gFatalHook, nullptr)) hook(what);
   std::_Exit(static_cast<int>(code));
 }
 

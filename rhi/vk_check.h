@@ -6,6 +6,10 @@
 namespace rayster::rhi {
 const char* resultName(VkResult result);
 [[noreturn]] void vkFailure(VkResult result, const char* expr, const char* file, int line);
+// Called with the one-line cause just before a device loss or memory exhaustion ends the process
+// (the viewer shows it in its window); the process still exits with the documented code.
+using FatalHook = void (*)(const char* message);
+void setFatalHook(FatalHook hook);
 } // namespace rayster::rhi
 
 #define VK_CHECK(expr)                                                    \

@@ -23,6 +23,7 @@ PACKAGES=(
   libtinyexr-dev libgtest-dev libgmock-dev
   libglvnd0 libgl1 libegl1 libopengl0  # bundled for GPU machines by scripts/bundle-gpu.sh
   libtinygltf-dev libtinyobjloader-dev assimp-testmodels clang libfuzzer-14-dev
+  libglfw3-dev libimgui-dev xvfb xauth  # the viewer, and its tests under a virtual X server
 )
 
 missing=()

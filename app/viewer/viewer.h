@@ -1,0 +1,43 @@
+#pragma once
+// `rayster view`: the interactive window. Scripted runs (--frames, --screenshot, --resize-at) make
+// it testable under Xvfb.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/renderer.h"
+
+namespace CLI {
+class App;
+}
+
+namespace rayster::app {
+
+struct ViewOptions {
+  std::string scene = "builtin:whitted";
+  uint32_t width = 1280, height = 720;
+  uint32_t frames = 0;     // 0: run until the window closes
+  std::string screenshot;  // after the last frame: the presented image (.png); .exr: the HDR frame
+  struct Resize {
+    uint32_t frame, width, height;
+  };
+  std::vector<Resize> resizes;  // --resize-at F:WxH
+  bool hideUi = false;
+  bool vsync = true;
+  bool validation = false;
+  bool debugLabels = true;
+  std::string device;
+  render::RenderSettings settings;
+};
+
+// Adds the `view` subcommand; the returned function finishes parsing and runs it.
+struct ViewCommand {
+  CLI::App* app = nullptr;
+  ViewOptions options;
+  std::string size = "1280x720", primary = "raster", taa = "on", tonemap = "aces";
+  std::vector<std::string> resizeAt;
+};
+void addViewCommand(CLI::App& cli, ViewCommand& view);
+int viewCommand(ViewCommand& view, bool validation, const std::string& device, bool debugLabels);
+
+} // namespace rayster::app
