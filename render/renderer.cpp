@@ -233,9 +233,11 @@ struct Renderer::Impl {
     fc.mirrorRoughness = s.mirrorRoughness;
     fc.glossyThreshold = s.glossyThreshold;
     fc.aoRadius = aoRadius(s);
-    // The raster mode has neither AO nor indirect light: ambient and the SH environment stand in.
-    fc.effectFlags = s.mode == Mode::Raster ? gpu::kEffectPrefilteredEnv
-                                            : (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u);
+    // Untraced glossy light (rougher than the glossy threshold) comes from the GGX-prefiltered
+    // environment in both modes. The raster mode has neither AO nor indirect light: ambient and the
+    // SH environment stand in.
+    fc.effectFlags = gpu::kEffectPrefilteredEnv |
+                     (s.mode == Mode::Raster ? 0u : (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u));
     fc.dfgSlot = gpu.dfgSlot;
     fc.emissiveTriangles = gpu.emissiveTriangles.address();
     fc.environmentCdf = gpu.environmentCdf.address();

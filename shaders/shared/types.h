@@ -57,7 +57,7 @@ RAYSTER_CONST uint kTonemapNeutral = 1u;
 // FrameConstants::effectFlags
 RAYSTER_CONST uint kEffectAo = 1u;        // ray-traced ambient occlusion scales ambient/environment light
 RAYSTER_CONST uint kEffectIndirect = 2u;
-RAYSTER_CONST uint kEffectPrefilteredEnv = 4u;  // untraced glossy light from the prefiltered environment (raster mode)
+RAYSTER_CONST uint kEffectPrefilteredEnv = 4u;  // untraced glossy light from the GGX-prefiltered environment
 // Levels of the prefiltered environment (render/gpu_environment.cpp): level k (1..N) is GGX
 // roughness k/N, each kPrefilteredWidth × kPrefilteredWidth/2, stacked vertically in one image.
 RAYSTER_CONST uint kPrefilteredLevels = 6u;
