@@ -18,11 +18,12 @@ std::shared_ptr<CullBuffers> createCullBuffers(rhi::Context& ctx, uint32_t drawC
   c->ctx = &ctx;
   const VkDeviceSize slots = 2 * VkDeviceSize(std::max(drawCount, 1u));
   constexpr VkBufferUsageFlags kIndirect = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
-  c->commands = rhi::Buffer(ctx, slots * sizeof(VkDrawIndirectCommand), kIndirect, rhi::MemoryUsage::GpuOnly,
-                            "cull-commands");
+  c->commands =
+      rhi::Buffer(ctx, slots * sizeof(VkDrawIndirectCommand), kIndirect, rhi::MemoryUsage::GpuOnly, "cull-commands");
   c->drawIds = rhi::Buffer(ctx, slots * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, rhi::MemoryUsage::GpuOnly,
                            "cull-draw-ids");
-  c->counts = rhi::Buffer(ctx, 2 * sizeof(uint32_t), kIndirect | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+  c->counts = rhi::Buffer(ctx, 2 * sizeof(uint32_t),
+                          kIndirect | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                           rhi::MemoryUsage::GpuOnly, "cull-counts");
   c->readback = rhi::Buffer(ctx, 2 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
                             "cull-readback");
@@ -53,7 +54,7 @@ void ensureHiz(CullBuffers& c, VkExtent2D size) {
   c.hizFresh = true;
 }
 
-} // namespace
+}  // namespace
 
 CulledDraws cullDraws(graph::RenderGraph& graph, const FrameInputs& in) {
   CullBuffers& c = *in.scene.cull;
@@ -89,9 +90,13 @@ CulledDraws cullDraws(graph::RenderGraph& graph, const FrameInputs& in) {
         const rhi::Pipeline& pipe = in.pipelines.cull;
         vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
         rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
-        const gpu::CullPush push{in.scene.drawRecords.address(), pc.buffer(out.commands).address(),
-                                 pc.buffer(out.drawIds).address(), pc.buffer(out.counts).address(),
-                                 pc.buffer(out.hiz).address(), c.drawCount, flags};
+        const gpu::CullPush push{in.scene.drawRecords.address(),
+                                 pc.buffer(out.commands).address(),
+                                 pc.buffer(out.drawIds).address(),
+                                 pc.buffer(out.counts).address(),
+                                 pc.buffer(out.hiz).address(),
+                                 c.drawCount,
+                                 flags};
         vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), &push);
         vkCmdDispatch(pc.cmd, (c.drawCount + gpu::kCullGroupSize - 1) / gpu::kCullGroupSize, 1, 1);
       });
@@ -169,4 +174,4 @@ uint32_t visibleDraws(const GpuScene& scene) {
   return n[0] + n[1];
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -37,7 +37,7 @@ struct CullBuffers {
   bool hizFresh = false;  // just (re)created: the next frame clears its header
   graph::ResourceState commandsState, drawIdsState, countsState, readbackState, hizState;
   rhi::Context* ctx = nullptr;
-  bool enabled = true;   // false: every draw passes (RenderSettings::culling)
+  bool enabled = true;  // false: every draw passes (RenderSettings::culling)
 };
 
 std::shared_ptr<CullBuffers> createCullBuffers(rhi::Context& ctx, uint32_t drawCount);
@@ -58,4 +58,4 @@ void readbackCullStats(graph::RenderGraph& graph, const FrameInputs& in, const C
 // Draws that survived culling in the last frame read back (both lists), of scene.draws.size().
 uint32_t visibleDraws(const GpuScene& scene);
 
-} // namespace rayster::render
+}  // namespace rayster::render
