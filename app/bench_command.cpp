@@ -89,6 +89,7 @@ json configResult(const rhi::Context& ctx, const BenchConfig& c, const render::R
   j["driver"] = ctx.info().driverInfo;
   j["primary_used"] = render::primaryName(out.primaryUsed);
   j["shadow_layers"] = out.shadowLayers;
+  if (out.visibleDraws >= 0) j["draws"] = {{"visible", out.visibleDraws}, {"total", out.totalDraws}};
   if (out.rasterGBufferMs >= 0)
     j["auto"] = {{"raster_gbuffer_ms", out.rasterGBufferMs}, {"traced_gbuffer_ms", out.tracedGBufferMs}};
   uint64_t rays = 0;
@@ -148,6 +149,7 @@ Result<json> runConfig(const BenchOptions& o, const BenchConfig& c) {
     s.maxDepth = c.maxDepth;
     s.shadowLights = c.shadowLights;
     s.rawRays = c.rawRays;
+    s.culling = c.culling;
     auto out = (*renderer)->render(s);
     if (!out) return out.error();
     result = configResult(**ctx, c, *out);

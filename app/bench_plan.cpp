@@ -21,7 +21,8 @@ std::string BenchConfig::id() const {
   std::string s = scene.rfind("builtin:", 0) == 0 ? scene.substr(8) : scene;
   for (char& c : s)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-') c = '_';
-  return fmt::format("{}/{}x{}/{}/{}/d{}/l{}", s, width, height, mode, primary, maxDepth, shadowLights);
+  return fmt::format("{}/{}x{}/{}/{}/d{}/l{}{}", s, width, height, mode, primary, maxDepth, shadowLights,
+                     culling ? "" : "/nocull");
 }
 
 nlohmann::json BenchConfig::toJson() const {
@@ -29,7 +30,7 @@ nlohmann::json BenchConfig::toJson() const {
           {"width", width},     {"height", height},      {"mode", mode},
           {"primary", primary}, {"max_depth", maxDepth}, {"shadow_lights", shadowLights},
           {"warmup", warmup},   {"frames", frames},      {"seed", seed},
-          {"raw_rays", rawRays}};
+          {"raw_rays", rawRays}, {"culling", culling}};
 }
 
 Result<BenchConfig> BenchConfig::fromJson(const nlohmann::json& j) {
@@ -48,6 +49,7 @@ Result<BenchConfig> BenchConfig::fromJson(const nlohmann::json& j) {
     c.frames = j.at("frames").get<uint32_t>();
     c.seed = j.at("seed").get<uint32_t>();
     c.rawRays = j.value("raw_rays", false);
+    c.culling = j.value("culling", true);
     return c;
   } catch (const std::exception& e) {
     return makeError(ExitCode::BadArguments, "bench configuration: {}", e.what());
@@ -99,6 +101,7 @@ void appendSweep(BenchPlan& plan, const std::string& name, const BenchAxes& a) {
             c.frames = a.frames;
             c.seed = a.seed;
             c.rawRays = a.rawRays;
+            c.culling = a.culling;
             plan.configs.push_back(c);
           }
 }
@@ -150,6 +153,7 @@ Result<BenchPlan> loadPlan(const std::string& path) {
       a.warmup = s.value("warmup", a.warmup);
       a.frames = s.value("frames", a.frames);
       a.rawRays = s.value("raw_rays", a.rawRays);
+      a.culling = s.value("culling", a.culling);
       if (auto st = checkAxes(a); !st) return makeError(ExitCode::BadInput, "plan '{}': {}", path, st.error().message);
       const size_t before = plan.configs.size();
       appendSweep(plan, s.value("name", fmt::format("sweep{}", before)), a);

@@ -22,6 +22,7 @@ struct BenchConfig {
   uint32_t warmup = 16, frames = 64;  // frames measured after the warm-up
   uint32_t seed = 1;
   bool rawRays = false;    // also time the raw-rate twins of the primary and shadow rays
+  bool culling = true;     // GPU culling of the raster G-buffer's draws (ids of "off" end in /nocull)
   std::string id() const;  // unique within a plan, stable across runs (compare matches by it)
   nlohmann::json toJson() const;
   static Result<BenchConfig> fromJson(const nlohmann::json& j);
@@ -41,13 +42,14 @@ struct BenchAxes {
   std::vector<uint32_t> maxDepths{7};
   uint32_t shadowLights = 8, warmup = 16, frames = 64, seed = 1;
   bool rawRays = false;
+  bool culling = true;
 };
 
 bool parseSizeText(const std::string& text, uint32_t& w, uint32_t& h);
 // The cross product of the axes, as one sweep whose x axis is the first axis with several values.
 Result<BenchPlan> planFromAxes(const BenchAxes& axes);
 // A JSON plan: {"name", "warmup", "frames", "seed", "sweeps": [{"name", "scenes", "sizes", "modes",
-// "primaries", "max_depth", "shadow_lights", "warmup", "frames", "raw_rays", "axis"}]} (sweep fields default to the
+// "primaries", "max_depth", "shadow_lights", "warmup", "frames", "raw_rays", "culling", "axis"}]} (sweep fields default to the
 // top).
 Result<BenchPlan> loadPlan(const std::string& path);
 

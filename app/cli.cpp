@@ -49,7 +49,7 @@ int run(int argc, char** argv) {
   cli.add_flag("--no-debug-labels", noLabels, "Do not emit debug labels and object names (on by default)");
 
   RenderOptions ro;
-  std::string size = "1280x720", primary = "auto", tonemap = "aces", taa = "on", mode = "hybrid";
+  std::string size = "1280x720", primary = "auto", tonemap = "aces", taa = "on", mode = "hybrid", culling = "on";
   CLI::App* render = cli.add_subcommand("render", "Render a scene to an image, headless");
   render->add_option("scene", ro.scene, "Scene: a .gltf/.glb, .obj or .json scene file, or builtin:NAME (cornell, whitted, spheres, instances[:N]); default builtin:whitted");
   render->add_option("-o,--output", ro.output, "Output image, .png (tonemapped) or .exr (linear HDR)");
@@ -81,6 +81,9 @@ int run(int argc, char** argv) {
   render->add_option("--taa", taa,
                      "Temporal anti-aliasing with sub-pixel jitter: on (default) or off; a static view converges to a "
                      "supersampled image over --frames")
+      ->check(CLI::IsMember({"on", "off"}));
+  render->add_option("--culling", culling,
+                     "GPU frustum culling of the raster G-buffer's draws (indirect draws): on (default) or off")
       ->check(CLI::IsMember({"on", "off"}));
   render->add_option("--camera", ro.settings.camera, "Camera name from the scene");
   render->add_option("--time", ro.settings.time, "Animation time of the first frame, in seconds (default 0)");
@@ -222,6 +225,7 @@ int run(int argc, char** argv) {
                                            : render::Mode::Hybrid;
     ro.settings.tonemap = *render::parseTonemapper(tonemap);  // CLI11 checked the name
     ro.settings.taa = taa == "on";
+    ro.settings.culling = culling == "on";
     if (spp > 0) ro.settings.frames = spp;
     ro.settings.ao = ao == "on";
     if (!indirect.empty()) ro.settings.indirect = indirect == "on";

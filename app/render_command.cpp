@@ -50,6 +50,8 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   j["primary"] = render::primaryName(out.primaryUsed);
   j["tonemap"] = render::tonemapperName(o.settings.tonemap);
   j["taa"] = o.settings.taa;
+  j["culling"] = o.settings.culling;
+  if (out.visibleDraws >= 0) j["draws"] = {{"visible", out.visibleDraws}, {"total", out.totalDraws}};
   j["max_depth"] = o.settings.maxDepth;
   if (out.rasterGBufferMs >= 0) j["auto"] = {{"raster_gbuffer_ms", out.rasterGBufferMs}, {"traced_gbuffer_ms", out.tracedGBufferMs}};
   j["frame_gpu_ms_median"] = out.frameMedianMs;
@@ -156,6 +158,9 @@ int renderCommand(const RenderOptions& o) {
     if (o.printTimings) {
       std::printf("%-20s %10s %10s %10s\n", "pass", "median ms", "min ms", "p95 ms");
       for (const auto& p : out->passes) std::printf("%-20s %10.3f %10.3f %10.3f\n", p.name.c_str(), p.medianMs, p.minMs, p.p95Ms);
+      if (out->visibleDraws >= 0)
+        std::printf("%-20s %10lld of %u (last frame, culling %s)\n", "visible draws", (long long)out->visibleDraws,
+                    out->totalDraws, o.settings.culling ? "on" : "off");
       std::printf("%-20s %10.3f   (%s, %s, primary %s, %ux%u)\n", "frame (GPU)", out->frameMedianMs,
                   (*ctx)->info().name.c_str(), render::modeName(out->modeUsed), render::primaryName(out->primaryUsed),
                   o.settings.width, o.settings.height);

@@ -81,8 +81,10 @@ const UseDesc& describe(Use use) {
       // Readback goes through a buffer; host-visible images are not used.
       {Kind::Buffer, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT,
        VK_IMAGE_LAYOUT_UNDEFINED, false, true, "host-read"},
+      {Kind::Buffer, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT,
+       VK_IMAGE_LAYOUT_UNDEFINED, false, true, "indirect-read"},
   };
-  static_assert(sizeof(kTable) / sizeof(kTable[0]) == size_t(Use::HostRead) + 1,
+  static_assert(sizeof(kTable) / sizeof(kTable[0]) == size_t(Use::IndirectRead) + 1,
                 "one row per Use, in declaration order");
   const auto index = size_t(use);
   RAYSTER_ASSERT(index < sizeof(kTable) / sizeof(kTable[0]), "unknown graph::Use");

@@ -31,6 +31,7 @@ enum class Use : uint8_t {
   AccelStructBuildWrite, // the buffer backing an acceleration structure being built or refitted
   AccelStructRead,       // ray tracing shaders tracing against a TLAS
   HostRead,              // CPU readback after a copy
+  IndirectRead,          // draw commands and draw counts of vkCmdDraw*Indirect*
 };
 
 struct AccessInfo {

@@ -3,9 +3,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "render/passes/cull.h"
 #include "rhi/context.h"
 #include "scene/tangents.h"
 #include "shaders/shared/types.h"
@@ -105,7 +107,18 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   std::vector<uint32_t> meshFirstGeometry;
   std::vector<std::vector<rhi::BlasGeometry>> blasInputs;
   std::vector<uint64_t> meshTriangles;
+  std::vector<std::vector<std::pair<glm::vec3, glm::vec3>>> meshBounds;  // per primitive, then the sphere set
   for (const scene::Mesh& mesh : scene.meshes) {
+    auto& bounds = meshBounds.emplace_back();
+    for (const scene::Primitive& prim : mesh.primitives) {
+      glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+      for (const glm::vec3& p : prim.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+      bounds.emplace_back(lo, hi);
+    }
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const scene::Sphere& sp : mesh.spheres)
+      lo = glm::min(lo, sp.center - glm::vec3(sp.radius)), hi = glm::max(hi, sp.center + glm::vec3(sp.radius));
+    bounds.emplace_back(lo, hi);
     meshFirstGeometry.push_back(uint32_t(geometryRows.size()));
     auto& inputs = blasInputs.emplace_back();
     uint64_t triangles = 0;
@@ -134,10 +147,11 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
                             meshFirstGeometry[inst.mesh], mask, 0, 0, inst.worldFromObject});
     for (uint32_t p = 0; p < mesh.primitives.size(); ++p)
       gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + p, uint32_t(mesh.primitives[p].indices.size()), false,
-                          inst.castsShadows});
+                          inst.castsShadows, meshBounds[inst.mesh][p].first, meshBounds[inst.mesh][p].second});
     if (!mesh.spheres.empty())
       gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + uint32_t(mesh.primitives.size()),
-                          uint32_t(mesh.spheres.size()), true, inst.castsShadows});
+                          uint32_t(mesh.spheres.size()), true, inst.castsShadows, meshBounds[inst.mesh].back().first,
+                          meshBounds[inst.mesh].back().second});
     gs.triangleCount += meshTriangles[inst.mesh];
     gs.sphereCount += mesh.spheres.size();
 
@@ -170,6 +184,11 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     gs.instances = tableBuffer(ctx, instanceRows, "instances");
   }
   gs.lights = tableBuffer(ctx, lightRows, "lights");
+  std::vector<gpu::DrawRecord> drawRows;
+  for (const GpuScene::Draw& d : gs.draws)
+    drawRows.push_back({d.instance, d.geometry, d.count, d.spheres ? gpu::kDrawSpheres : 0u, d.aabbMin, d.aabbMax});
+  gs.drawRecords = tableBuffer(ctx, drawRows, "draw-records");
+  gs.cull = createCullBuffers(ctx, uint32_t(gs.draws.size()));
   uploadEmissiveTriangles(ctx, scene, gs);
   gs.uploadMs = msSince(t0);
 

@@ -39,6 +39,7 @@ struct GpuScene {
     uint32_t count;  // triangles: index count; spheres: sphere count (one box each)
     bool spheres;
     bool castsShadows = true;  // false for a light's visible shape (no shadow-map draw)
+    glm::vec3 aabbMin{0.0f}, aabbMax{0.0f};  // object space: what GPU culling tests
   };
   std::vector<rhi::Buffer> vertexBuffers;  // one per primitive (AABBs for sphere sets)
   std::vector<rhi::Buffer> indexBuffers;   // one per primitive (SphereRecords for sphere sets)
@@ -60,6 +61,10 @@ struct GpuScene {
   rhi::Tlas tlas;
   std::vector<VkAccelerationStructureInstanceKHR> tlasInstances;  // as built; updated when instances move
   std::vector<Draw> draws;  // raster: one per (instance, primitive or sphere set)
+  rhi::Buffer drawRecords;  // gpu::DrawRecord[], one per draw, in order (render/passes/cull.cpp)
+  // The culling pass's per-frame buffers and their graph states (render/passes/cull.h). Shared
+  // ownership only so the type may stay incomplete here; mutable state of a const scene.
+  std::shared_ptr<struct CullBuffers> cull;
   // Animated scenes: the CPU copy of the instance table (its buffer is host-visible then), and for
   // each scene instance its row (-1: nothing to draw) — the row is also its TLAS instance index.
   std::vector<gpu::InstanceRecord> instanceRecords;

@@ -35,11 +35,15 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   g.colorFormats = {kNormalFormat, kAlbedoFormat, kMaterialFormat, kEmissiveFormat, kIdFormat, kMotionFormat};
   g.depthFormat = kDepthFormat;
   g.bindings = {{0, kUniform}};
-  g.pushConstantBytes = 8;
+  g.pushConstantBytes = 16;  // DrawRecord[] and this list's draw ids (render/passes/cull.h)
   p.gbufferRaster = rhi::createGraphicsPipeline(ctx, g);
   g.vertex = "gbuffer_sphere.vert";
   g.fragment = "gbuffer_sphere.frag";
   p.gbufferSpheres = rhi::createGraphicsPipeline(ctx, g);
+  const rhi::Binding cull[] = {{0, kUniform}};
+  p.cull = rhi::createComputePipeline(ctx, "cull.comp", cull, sizeof(gpu::CullPush));
+  const rhi::Binding hiz[] = {{0, kUniform}, {1, kSampled}};
+  p.hiz = rhi::createComputePipeline(ctx, "hiz.comp", hiz, sizeof(gpu::HizPush));
 
   rhi::GraphicsPipelineDesc shadowMap;
   shadowMap.vertex = "shadow_map.vert";

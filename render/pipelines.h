@@ -25,6 +25,8 @@ inline constexpr VkFormat kTaaHistoryFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  //
 struct Pipelines {
   rhi::Pipeline gbufferRaster;
   rhi::Pipeline gbufferSpheres;  // raster impostors for analytic spheres
+  rhi::Pipeline cull;            // frustum and occlusion culling into the G-buffer's indirect lists
+  rhi::Pipeline hiz;             // the depth pyramid occlusion culling tests against
   // The ray-tracing pipelines exist only on devices with ray-tracing pipelines (Capabilities::rayTracing()).
   rhi::RayTracingPipeline gbufferTraced;
   rhi::RayTracingPipeline shadows;

@@ -19,6 +19,7 @@
 #include "render/gpu_scene.h"
 #include "render/history.h"
 #include "render/jitter.h"
+#include "render/passes/cull.h"
 #include "render/passes/denoise.h"
 #include "render/passes/passes.h"
 #include "render/path_tracer.h"
@@ -410,6 +411,7 @@ struct Renderer::Impl {
     run.emplace();
     run->settings = s;
     run->cam = cam;
+    gpu.cull->enabled = s.culling;
     RenderOutput& out = run->out;
     frameIndex = 0;
     const bool rasterMode = s.mode == Mode::Raster;
@@ -617,7 +619,8 @@ struct Renderer::Impl {
       const bool measured = f >= s.warmupFrames || s.warmupFrames >= s.frames;  // never an empty sample
       double gpuMs = 0;
       for (auto& t : timers.read()) {
-        if (t.name == "readback" || t.name == "host-visible" || t.name.rfind("output", 0) == 0) continue;
+        if (t.name.rfind("readback", 0) == 0 || t.name.rfind("host-visible", 0) == 0 || t.name.rfind("output", 0) == 0)
+          continue;
         stats.passes.emplace_back(t.name, t.ms);
         if (t.name.rfind("raw-", 0) != 0) gpuMs += t.ms;  // raw-rate passes are not part of the frame
         if (!measured) continue;
@@ -636,6 +639,8 @@ struct Renderer::Impl {
         ++taaFrames;
       }
       stats.primaryUsed = out.primaryUsed;
+      out.visibleDraws = stats.visibleDraws = out.primaryUsed == Primary::Raster ? int64_t(visibleDraws(gpu)) : -1;
+      out.totalDraws = uint32_t(gpu.draws.size());
       stats.camera = camera;
     }
     return stats;
@@ -762,16 +767,14 @@ Status Renderer::beginRun(const RenderSettings& settings) {
 }
 
 FrameStats Renderer::renderFrame(const FrameControl& control) { return impl_->renderFrame(control); }
-
 RenderOutput Renderer::endRun() { return impl_->endRun(); }
+const rhi::Image& Renderer::outputImage() const { return impl_->output; }
 
 RenderOutput Renderer::readbackImages() {
   RenderOutput out;
   impl_->readImages(out);
   return out;
 }
-
-const rhi::Image& Renderer::outputImage() const { return impl_->output; }
 
 void Renderer::refreshLights() {
   Impl& m = *impl_;

@@ -46,6 +46,8 @@ struct RenderSettings {
   // Temporal anti-aliasing: jitters the primaries by a sub-pixel Halton(2,3) offset each frame and
   // resolves against a reprojected history, so a static view converges to a supersampled image.
   bool taa = true;
+  // GPU frustum culling of the raster G-buffer's draws (render/passes/cull.h); off draws every one.
+  bool culling = true;
   // Frames that start a new shot: the TAA history restarts there, besides the cuts the renderer
   // detects itself (a camera jump between frames) and the first frame of every render().
   std::vector<uint32_t> cuts;
@@ -123,6 +125,9 @@ struct RenderOutput {
   // the frame, and wall ms including the wait for the GPU.
   std::vector<double> frameGpuMs, frameCpuMs, frameWallMs;
   uint32_t shadowLayers = 0;  // lights with their own shadow layer (0: many-light mode)
+  // The raster G-buffer's draws after culling in the last frame, of totalDraws (-1: not rasterised).
+  int64_t visibleDraws = -1;
+  uint32_t totalDraws = 0;
   struct SceneStats {
     uint64_t triangles = 0, spheres = 0;
     uint64_t blasBytes = 0, blasCompactedBytes = 0, tlasBytes = 0;
@@ -148,6 +153,7 @@ struct FrameStats {
   std::vector<std::pair<std::string, double>> passes;
   double gpuMs = 0;
   Primary primaryUsed = Primary::Raster;
+  int64_t visibleDraws = -1;  // raster G-buffer draws after culling (-1: traced primaries)
   scene::Camera camera;  // the camera the frame was rendered with
 };
 

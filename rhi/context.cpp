@@ -296,14 +296,18 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
   f12.runtimeDescriptorArray = VK_TRUE;
   f12.descriptorBindingPartiallyBound = VK_TRUE;
   f12.shaderSampledImageArrayNonUniformIndexing = VK_TRUE;
+  f12.drawIndirectCount = VK_TRUE;  // GPU culling: the G-buffer draws what cull.comp counted
   f12.pNext = &f13;
+  VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
+  f11.shaderDrawParameters = VK_TRUE;  // gl_DrawID picks the culled draw's record
+  f11.pNext = &f12;
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   features.features.shaderInt64 = supported.features.shaderInt64;
   features.features.shaderStorageImageExtendedFormats = supported.features.shaderStorageImageExtendedFormats;
   features.features.samplerAnisotropy = supported.features.samplerAnisotropy;
   // gl_PrimitiveID in fragment shaders (the raster G-buffer's geometric normal) needs it.
   features.features.geometryShader = supported.features.geometryShader;
-  features.pNext = &f12;
+  features.pNext = &f11;
   if (!supported.features.shaderInt64 || !supported.features.geometryShader)
     return makeError(ExitCode::MissingCapability, "{} lacks shaderInt64 or geometryShader", ctx->info_.name);
 

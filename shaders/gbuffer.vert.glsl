@@ -3,7 +3,11 @@
 #include "lib/frame.glsl"
 
 // Vertices are pulled by device address; draws are non-indexed over the index count.
-layout(push_constant, scalar) uniform Push { uint instance; uint geometry; } pc;
+// The draw comes from the culled list (render/passes/cull.cpp): gl_DrawID indexes drawIds, whose
+// entry is the DrawRecord row.
+layout(push_constant, scalar) uniform Push { uint64_t records; uint64_t drawIds; } pc;
+layout(buffer_reference, scalar) readonly buffer DrawRecords { DrawRecord d[]; };
+layout(buffer_reference, scalar) readonly buffer DrawIds { uint i[]; };
 
 layout(location = 0) out vec3 outWorldPos;
 layout(location = 1) out vec3 outNormal;
@@ -11,10 +15,13 @@ layout(location = 2) out vec4 outTangent;
 layout(location = 3) out vec2 outUv0;
 layout(location = 4) out vec2 outUv1;
 layout(location = 5) out vec3 outPrevWorldPos;  // for the motion vector
+layout(location = 6) flat out uvec2 outDraw;  // instance, geometry (for the fragment shader)
 
 void main() {
-  InstanceRecord inst = Instances(frame.instances).i[pc.instance];
-  GeometryRecord g = Geometries(frame.geometries).g[pc.geometry];
+  DrawRecord draw = DrawRecords(pc.records).d[DrawIds(pc.drawIds).i[gl_DrawID]];
+  outDraw = uvec2(draw.instance, draw.geometry);
+  InstanceRecord inst = Instances(frame.instances).i[draw.instance];
+  GeometryRecord g = Geometries(frame.geometries).g[draw.geometry];
   uint index = Indices(g.indexAddress).i[gl_VertexIndex];
   Vertex v = Vertices(g.vertexAddress).v[index];
   vec4 world = inst.worldFromObject * vec4(v.position, 1.0);

@@ -8,14 +8,13 @@
 #include "lib/motion.glsl"
 #include "lib/gbuffer_out.glsl"
 
-layout(push_constant, scalar) uniform Push { uint instance; uint geometry; } pc;
-
 layout(location = 0) in vec3 inWorldPos;
 layout(location = 1) flat in uint inSphere;
+layout(location = 2) flat in uvec2 inDraw;  // instance, geometry
 
 void main() {
-  InstanceRecord inst = Instances(frame.instances).i[pc.instance];
-  GeometryRecord g = Geometries(frame.geometries).g[pc.geometry];
+  InstanceRecord inst = Instances(frame.instances).i[inDraw.x];
+  GeometryRecord g = Geometries(frame.geometries).g[inDraw.y];
   SphereRecord s = Spheres(g.vertexAddress).s[inSphere];
   MaterialRecord m = Materials(frame.materials).m[s.material];
   // The same ray as a traced primary: from the camera through this pixel's centre.
@@ -37,6 +36,6 @@ void main() {
   vec4 worldTangent = vec4((inst.worldFromObject * vec4(tangent.xyz, 0.0)).xyz, tangent.w);
   vec4 clip = frame.clipFromWorld * vec4(worldPos, 1.0);
   gl_FragDepth = clip.z / clip.w;
-  writeGBuffer(evaluateSurface(m, SurfacePoint(worldPos, n, worldTangent, n, tex, tex), origin), pc.instance,
+  writeGBuffer(evaluateSurface(m, SurfacePoint(worldPos, n, worldTangent, n, tex, tex), origin), inDraw.x,
               motionFromWorld(worldPos, previousWorld(inst, worldPos)));
 }

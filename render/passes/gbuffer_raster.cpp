@@ -1,5 +1,6 @@
 // Pass 1 (raster producer): the scene rasterised into the G-buffer with dynamic rendering.
 #include "render/gpu_scene.h"
+#include "render/passes/cull.h"
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
 #include "shaders/shared/types.h"
@@ -41,14 +42,18 @@ void bindTextures(VkCommandBuffer cmd, const FrameInputs& in, VkPipelineBindPoin
 
 GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
   GBuffer gb = createGBufferTargets(graph, in.size, false);
+  const CulledDraws culled = cullDraws(graph, in);
   graph.addPass(
       "gbuffer-raster",
       [&](graph::PassBuilder& b) {
         b.write(gb.depth, graph::Use::DepthAttachment);
         for (auto h : {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion})
           b.write(h, graph::Use::ColorAttachment);
+        b.read(culled.commands, graph::Use::IndirectRead);
+        b.read(culled.counts, graph::Use::IndirectRead);
+        b.read(culled.drawIds, graph::Use::VertexShaderRead);
       },
-      [gb, &in](graph::PassContext& pc) {
+      [gb, culled, &in](graph::PassContext& pc) {
         constexpr int kTargets = 6;
         VkRenderingAttachmentInfo color[kTargets];
         graph::ImageHandle targets[kTargets] = {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion};
@@ -78,24 +83,25 @@ GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
         VkRect2D scissor{{0, 0}, in.size};
         vkCmdSetViewport(pc.cmd, 0, 1, &vp);
         vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
-        // Triangles first, then sphere impostors (their bounding cubes, one instance per sphere).
-        for (bool spheres : {false, true}) {
-          const rhi::Pipeline& pipe = spheres ? in.pipelines.gbufferSpheres : in.pipelines.gbufferRaster;
+        // Triangles first, then sphere impostors (their bounding cubes, one instance per sphere):
+        // the two lists cullDraws() compacted, each as long as its count says.
+        const uint32_t maxDraws = in.scene.cull->drawCount;
+        for (uint32_t list : {0u, 1u}) {
+          const rhi::Pipeline& pipe = list == 1 ? in.pipelines.gbufferSpheres : in.pipelines.gbufferRaster;
           vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.handle());
           rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
           bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.layout());
-          for (const GpuScene::Draw& d : in.scene.draws) {
-            if (d.spheres != spheres) continue;
-            uint32_t push[2] = {d.instance, d.geometry};
-            vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), push);
-            if (spheres)
-              vkCmdDraw(pc.cmd, 36, d.count, 0, 0);
-            else
-              vkCmdDraw(pc.cmd, d.count, 1, 0, 0);
-          }
+          const uint64_t push[2] = {in.scene.drawRecords.address(),
+                                    pc.buffer(culled.drawIds).address() + list * maxDraws * sizeof(uint32_t)};
+          vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), push);
+          vkCmdDrawIndirectCount(pc.cmd, pc.buffer(culled.commands).handle(),
+                                 list * maxDraws * sizeof(VkDrawIndirectCommand), pc.buffer(culled.counts).handle(),
+                                 list * sizeof(uint32_t), maxDraws, sizeof(VkDrawIndirectCommand));
         }
         vkCmdEndRendering(pc.cmd);
       });
+  buildDepthPyramid(graph, in, gb.depth, culled);
+  readbackCullStats(graph, in, culled);
   return gb;
 }
 

@@ -214,6 +214,52 @@ struct FrameConstants {
   uint maxSpecularBounces;     // specular.rgen traces at most this many rays per path (1..kMaxSpecularBounces)
 };
 
+// GPU culling (render/passes/cull.cpp, TECHNIQUES.md §20): one row per GpuScene::Draw, in order.
+RAYSTER_CONST uint kDrawSpheres = 1u;  // DrawRecord::flags: a sphere set (36-vertex boxes, count instances)
+RAYSTER_CONST uint kCullGroupSize = 64u;
+struct DrawRecord {
+  uint instance;  // InstanceRecord row
+  uint geometry;  // GeometryRecord row
+  uint count;     // triangles: index count; spheres: sphere count
+  uint flags;     // kDrawSpheres
+  vec3 aabbMin;   // object space
+  vec3 aabbMax;
+};
+
+// CullPush::flags
+RAYSTER_CONST uint kCullFrustum = 1u;
+RAYSTER_CONST uint kCullOcclusion = 2u;  // against the depth pyramid, when it holds this very view
+
+// cull.comp push constants: the draw records and the two compacted lists it writes (list 0
+// triangles, list 1 spheres; each holds drawCount slots).
+struct CullPush {
+  uint64_t records;   // DrawRecord[drawCount]
+  uint64_t commands;  // VkDrawIndirectCommand[2 * drawCount]
+  uint64_t drawIds;   // uint[2 * drawCount]: the DrawRecord row of each command
+  uint64_t counts;    // uint[2]: commands per list (the draw-count buffer)
+  uint64_t hiz;       // HizHeader, then the levels' float depths
+  uint drawCount;
+  uint flags;         // kCull*; 0 (--culling off): every draw passes
+};
+
+// The depth pyramid (render/passes/cull.cpp): a header, then level 0 (the depth image's size) to
+// the 1 × 1 level, each ceil(previous / 2) and row-major, holding the MIN depth of the texels it
+// covers (reversed Z: the farthest). Kept in a buffer, so no per-level image views are needed.
+RAYSTER_CONST uint kHizGroupSize = 8u;
+struct HizHeader {
+  mat4 clipFromWorld;  // unjittered, of the frame whose depth it holds
+  uvec2 size;          // of level 0
+  uint levels;
+  uint valid;          // 0 until built
+};
+
+// hiz.comp push constants: one dispatch per level.
+struct HizPush {
+  uint64_t hiz;
+  uint level;  // 0: from the depth image; k: from level k − 1
+  uint pad0;
+};
+
 #ifdef __cplusplus
 static_assert(sizeof(Vertex) == 56);
 static_assert(sizeof(SphereRecord) == 32);
@@ -237,6 +283,11 @@ static_assert(sizeof(EmissiveTriangle) == 80);
 static_assert(offsetof(FrameConstants, emissiveTriangles) == 592);
 static_assert(offsetof(FrameConstants, maxSpecularBounces) == 628);
 static_assert(sizeof(FrameConstants) == 632);
+static_assert(sizeof(DrawRecord) == 40);
+static_assert(offsetof(DrawRecord, aabbMin) == 16);
+static_assert(sizeof(CullPush) == 48);
+static_assert(sizeof(HizHeader) == 80);
+static_assert(sizeof(HizPush) == 16);
 } // namespace rayster::gpu
 #endif
 

@@ -176,6 +176,24 @@ TEST(GraphState, TransferDstToHostRead) {
                     VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT));
 }
 
+// GPU culling: a compute pass writes draw commands and counts that vkCmdDrawIndirectCount reads,
+// and clears them with a transfer first.
+TEST(GraphState, ComputeWriteToIndirectRead) {
+  ResourceState s;
+  transition(s, Use::TransferDst, kBuffer);
+  EXPECT_EQ(transition(s, Use::StorageReadWriteCompute, kBuffer),
+            barrier(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, kCs,
+                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT));
+  EXPECT_EQ(transition(s, Use::IndirectRead, kBuffer),
+            barrier(kCs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                    VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT));
+  // The next frame's clear must wait for this frame's indirect reads (write after read).
+  const auto war = transition(s, Use::TransferDst, kBuffer);
+  ASSERT_TRUE(war);
+  EXPECT_EQ(war->srcStages, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT);
+  EXPECT_EQ(war->dstStages, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT);
+}
+
 TEST(GraphState, TransferImageLayouts) {
   ResourceState s;
   EXPECT_EQ(transition(s, Use::TransferDst, kImage),
@@ -208,7 +226,7 @@ bool appliesTo(Use use, bool isImage) {
 }
 
 TEST(GraphState, EveryPairOfUsesGivesAWellFormedBarrier) {
-  constexpr int kUses = int(Use::HostRead) + 1;
+  constexpr int kUses = int(Use::IndirectRead) + 1;
   for (bool isImage : {true, false}) {
     for (int first = 0; first < kUses; ++first) {
       for (int second = 0; second < kUses; ++second) {

@@ -1,0 +1,177 @@
+// GPU frustum culling into indirect draw lists (render/passes/cull.h).
+#include "render/passes/cull.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "render/gpu_scene.h"
+#include "render/passes/passes.h"
+#include "render/pipelines.h"
+#include "rhi/context.h"
+#include "shaders/shared/types.h"
+
+namespace rayster::render {
+
+std::shared_ptr<CullBuffers> createCullBuffers(rhi::Context& ctx, uint32_t drawCount) {
+  auto c = std::make_shared<CullBuffers>();
+  c->drawCount = drawCount;
+  c->ctx = &ctx;
+  const VkDeviceSize slots = 2 * VkDeviceSize(std::max(drawCount, 1u));
+  constexpr VkBufferUsageFlags kIndirect = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+  c->commands =
+      rhi::Buffer(ctx, slots * sizeof(VkDrawIndirectCommand), kIndirect, rhi::MemoryUsage::GpuOnly, "cull-commands");
+  c->drawIds = rhi::Buffer(ctx, slots * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, rhi::MemoryUsage::GpuOnly,
+                           "cull-draw-ids");
+  c->counts = rhi::Buffer(ctx, 2 * sizeof(uint32_t),
+                          kIndirect | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                          rhi::MemoryUsage::GpuOnly, "cull-counts");
+  c->readback = rhi::Buffer(ctx, 2 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
+                            "cull-readback");
+  std::memset(c->readback.mapped(), 0, 2 * sizeof(uint32_t));
+  return c;
+}
+
+namespace {
+
+uint32_t hizFloats(VkExtent2D size) {
+  uint64_t n = 0;
+  for (uint32_t level = 0;; ++level) {
+    const uint32_t w = std::max((size.width + (1u << level) - 1) >> level, 1u);
+    const uint32_t h = std::max((size.height + (1u << level) - 1) >> level, 1u);
+    n += uint64_t(w) * h;
+    if (w == 1 && h == 1) return uint32_t(n);
+  }
+}
+
+// A new resolution gets a new, invalid (zeroed header) pyramid.
+void ensureHiz(CullBuffers& c, VkExtent2D size) {
+  if (c.hiz && c.hizSize.width == size.width && c.hizSize.height == size.height) return;
+  c.hiz = rhi::Buffer(*c.ctx, sizeof(gpu::HizHeader) + sizeof(float) * VkDeviceSize(hizFloats(size)),
+                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::GpuOnly,
+                      "hiz");
+  c.hizState = {};
+  c.hizSize = size;
+  c.hizFresh = true;
+}
+
+}  // namespace
+
+CulledDraws cullDraws(graph::RenderGraph& graph, const FrameInputs& in) {
+  CullBuffers& c = *in.scene.cull;
+  ensureHiz(c, in.size);
+  CulledDraws out;
+  out.hiz = graph.importBuffer("hiz", &c.hiz, &c.hizState);
+  out.commands = graph.importBuffer("cull-commands", &c.commands, &c.commandsState);
+  out.drawIds = graph.importBuffer("cull-draw-ids", &c.drawIds, &c.drawIdsState);
+  out.counts = graph.importBuffer("cull-counts", &c.counts, &c.countsState);
+  graph.addPass(
+      "cull-clear",
+      [&](graph::PassBuilder& b) {
+        b.write(out.counts, graph::Use::TransferDst);
+        if (c.hizFresh) b.write(out.hiz, graph::Use::TransferDst);
+      },
+      [out, fresh = c.hizFresh](graph::PassContext& pc) {
+        vkCmdFillBuffer(pc.cmd, pc.buffer(out.counts).handle(), 0, VK_WHOLE_SIZE, 0);
+        if (fresh) vkCmdFillBuffer(pc.cmd, pc.buffer(out.hiz).handle(), 0, sizeof(gpu::HizHeader), 0);  // valid = 0
+      });
+  c.hizFresh = false;
+  // Occlusion only where last frame's depth is this frame's (see cull.h).
+  const bool occlusion = in.scene.instanceRecords.empty() && !in.scene.anyAlphaTested;
+  const uint32_t flags = c.enabled ? gpu::kCullFrustum | (occlusion ? gpu::kCullOcclusion : 0u) : 0u;
+  graph.addPass(
+      "cull",
+      [&](graph::PassBuilder& b) {
+        b.write(out.commands, graph::Use::StorageWriteCompute);
+        b.write(out.drawIds, graph::Use::StorageWriteCompute);
+        b.write(out.counts, graph::Use::StorageReadWriteCompute);  // atomicAdd
+        b.read(out.hiz, graph::Use::StorageReadCompute);
+      },
+      [out, flags, &in, &c](graph::PassContext& pc) {
+        const rhi::Pipeline& pipe = in.pipelines.cull;
+        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
+        rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
+        const gpu::CullPush push{in.scene.drawRecords.address(),
+                                 pc.buffer(out.commands).address(),
+                                 pc.buffer(out.drawIds).address(),
+                                 pc.buffer(out.counts).address(),
+                                 pc.buffer(out.hiz).address(),
+                                 c.drawCount,
+                                 flags};
+        vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), &push);
+        vkCmdDispatch(pc.cmd, (c.drawCount + gpu::kCullGroupSize - 1) / gpu::kCullGroupSize, 1, 1);
+      });
+  return out;
+}
+
+void buildDepthPyramid(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle depth,
+                       const CulledDraws& culled) {
+  const graph::BufferHandle hiz = culled.hiz;
+  graph.addPass(
+      "hiz-build",
+      [&](graph::PassBuilder& b) {
+        b.read(depth, graph::Use::SampledCompute);
+        b.write(hiz, graph::Use::StorageReadWriteCompute);
+        b.sideEffect();  // read by the next frame's cull pass
+      },
+      [depth, hiz, &in](graph::PassContext& pc) {
+        const rhi::Pipeline& pipe = in.pipelines.hiz;
+        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
+        rhi::DescriptorWriter()
+            .uniformBuffer(0, in.constants)
+            .sampledImage(1, pc.image(depth).view(), in.nearest.handle())
+            .push(pc.cmd, pipe);
+        const rhi::Buffer& buffer = pc.buffer(hiz);
+        for (uint32_t level = 0;; ++level) {
+          const uint32_t w = std::max((in.size.width + (1u << level) - 1) >> level, 1u);
+          const uint32_t h = std::max((in.size.height + (1u << level) - 1) >> level, 1u);
+          if (level > 0) {  // each level reads the one before: a barrier inside the pass
+            VkBufferMemoryBarrier2 mb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
+            mb.srcStageMask = mb.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+            mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+            mb.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+            mb.srcQueueFamilyIndex = mb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            mb.buffer = buffer.handle();
+            mb.size = VK_WHOLE_SIZE;
+            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+            dep.bufferMemoryBarrierCount = 1;
+            dep.pBufferMemoryBarriers = &mb;
+            vkCmdPipelineBarrier2(pc.cmd, &dep);
+          }
+          const gpu::HizPush push{buffer.address(), level, 0};
+          vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), &push);
+          vkCmdDispatch(pc.cmd, (w + gpu::kHizGroupSize - 1) / gpu::kHizGroupSize,
+                        (h + gpu::kHizGroupSize - 1) / gpu::kHizGroupSize, 1);
+          if (w == 1 && h == 1) break;
+        }
+      });
+}
+
+void readbackCullStats(graph::RenderGraph& graph, const FrameInputs& in, const CulledDraws& culled) {
+  CullBuffers& c = *in.scene.cull;
+  const graph::BufferHandle readback = graph.importBuffer("cull-readback", &c.readback, &c.readbackState);
+  graph.addPass(
+      "readback-cull",
+      [&](graph::PassBuilder& b) {
+        b.read(culled.counts, graph::Use::TransferSrc);
+        b.write(readback, graph::Use::TransferDst);
+      },
+      [culled, readback](graph::PassContext& pc) {
+        const VkBufferCopy region{0, 0, 2 * sizeof(uint32_t)};
+        vkCmdCopyBuffer(pc.cmd, pc.buffer(culled.counts).handle(), pc.buffer(readback).handle(), 1, &region);
+      });
+  graph.addPass(
+      "host-visible-cull",
+      [&](graph::PassBuilder& b) {
+        b.read(readback, graph::Use::HostRead);
+        b.sideEffect();
+      },
+      [](graph::PassContext&) {});
+}
+
+uint32_t visibleDraws(const GpuScene& scene) {
+  uint32_t n[2];
+  std::memcpy(n, scene.cull->readback.mapped(), sizeof(n));
+  return n[0] + n[1];
+}
+
+}  // namespace rayster::render
