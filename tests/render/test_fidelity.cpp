@@ -113,7 +113,9 @@ void checkScene(const std::string& scene) {
   const auto masks = buildMasks(hybrid.aovs["depth"], hybrid.aovs["material"], hybrid.aovs["shadow-denoised"]);
   const json budgets = readBudgets();
   const json* frozen = budgets.contains("scenes") && budgets["scenes"].contains(scene) ? &budgets["scenes"][scene] : nullptr;
-  if (!bless) ASSERT_NE(frozen, nullptr) << "no budgets for " << scene << " in " << budgetsPath();
+  if (!bless) {
+    ASSERT_NE(frozen, nullptr) << "no budgets for " << scene << " in " << budgetsPath();
+  }
 
   json entry = json::object();
   for (const auto& name : kMaskNames) {
