@@ -43,4 +43,4 @@ inline std::map<std::string, Image8> buildMasks(const ImageF& depth, const Image
   return masks;
 }
 
-} // namespace rayster::fidelity
+}  // namespace rayster::fidelity

@@ -104,15 +104,17 @@ void checkScene(const std::string& scene) {
   }
 
   // The hybrid frame, denoised and TAA-resolved, with the AOVs the masks are built from.
-  analytic::Rendered hybrid = analytic::renderHdr(dir, "hybrid", "builtin:" + scene, kWidth, kHeight, kHybridFrames,
-                                        "depth,material,shadow-denoised", fmt::format("--seed {} --taa on", kHybridSeed));
+  analytic::Rendered hybrid =
+      analytic::renderHdr(dir, "hybrid", "builtin:" + scene, kWidth, kHeight, kHybridFrames,
+                          "depth,material,shadow-denoised", fmt::format("--seed {} --taa on", kHybridSeed));
   ASSERT_FALSE(hybrid.hdr.empty());
   ASSERT_EQ(hybrid.aovs.size(), 3u);
   EXPECT_NE(hybrid.hdr.rgba, refs[0].rgba) << "the hybrid frame is not the reference";
 
   const auto masks = buildMasks(hybrid.aovs["depth"], hybrid.aovs["material"], hybrid.aovs["shadow-denoised"]);
   const json budgets = readBudgets();
-  const json* frozen = budgets.contains("scenes") && budgets["scenes"].contains(scene) ? &budgets["scenes"][scene] : nullptr;
+  const json* frozen =
+      budgets.contains("scenes") && budgets["scenes"].contains(scene) ? &budgets["scenes"][scene] : nullptr;
   if (!bless) {
     ASSERT_NE(frozen, nullptr) << "no budgets for " << scene << " in " << budgetsPath();
   }
@@ -130,9 +132,10 @@ void checkScene(const std::string& scene) {
     const fs::path maskPng = dir / fmt::format("mask-{}.png", name);
     ASSERT_TRUE(writePng(maskPng, mask).ok());
     const fs::path hybridExr = dir / "hybrid.exr";
-    const json error = compareCli(referencePath(scene, 1), hybridExr, maskPng, dir / fmt::format("hybrid-{}.json", name));
-    const json floor = compareCli(referencePath(scene, 1), referencePath(scene, 2), maskPng,
-                                  dir / fmt::format("floor-{}.json", name));
+    const json error =
+        compareCli(referencePath(scene, 1), hybridExr, maskPng, dir / fmt::format("hybrid-{}.json", name));
+    const json floor =
+        compareCli(referencePath(scene, 1), referencePath(scene, 2), maskPng, dir / fmt::format("floor-{}.json", name));
     ASSERT_FALSE(error.is_null() || floor.is_null());
     EXPECT_EQ(error["pixels"].get<size_t>(), pixels);
 
@@ -146,7 +149,9 @@ void checkScene(const std::string& scene) {
       // relMSE of an unconverged reference is dominated by its fireflies (caustics through glass), so
       // its floor can exceed the hybrid's error; bless records whether the floor is under the budget and
       // the test holds every floor that was to staying there (docs/fidelity.md discusses the others).
-      e[metric] = {{"measured", value}, {"budget", value * kMargin}, {"noiseFloor", noise},
+      e[metric] = {{"measured", value},
+                   {"budget", value * kMargin},
+                   {"noiseFloor", noise},
                    {"floorBelowBudget", noise < value * kMargin}};
       if (budgeted && !bless) {
         const json& b = (*frozen)[name][metric];
@@ -172,5 +177,5 @@ TEST(Fidelity, Whitted) { checkScene("whitted"); }
 TEST(Fidelity, Cornell) { checkScene("cornell"); }
 TEST(Fidelity, Spheres) { checkScene("spheres"); }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test
