@@ -226,11 +226,12 @@ inline Rendered renderHdr(const std::filesystem::path& dir, const std::string& n
   Rendered out;
   auto png = dir / (name + ".png");
   auto exr = dir / (name + ".exr");
-  // No TAA: its sub-pixel jitter would move the pixel centres the closed forms are evaluated at.
-  // Seed 7 unless `extra` names one.
+  // No TAA unless `extra` asks for it: its sub-pixel jitter would move the pixel centres the closed
+  // forms are evaluated at. Seed 7 unless `extra` names one.
   const std::string seed = extra.find("--seed") == std::string::npos ? "--seed 7" : "";
-  std::string args = fmt::format("render {} --size {}x{} --frames {} {} --taa off --hdr {} -o {} {}", scene.string(), w, h,
-                                 frames, seed, exr.string(), png.string(), extra);
+  const std::string taa = extra.find("--taa") == std::string::npos ? "--taa off" : "";
+  std::string args = fmt::format("render {} --size {}x{} --frames {} {} {} --hdr {} -o {} {}", scene.string(), w, h,
+                                 frames, seed, taa, exr.string(), png.string(), extra);
   if (!aovs.empty()) args += " --aov " + aovs;
   RunResult r = runRayster(args);
   EXPECT_EQ(r.exitCode, 0) << r.output;
