@@ -165,10 +165,10 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     gs.instances = rhi::Buffer(ctx, instanceRows.size() * sizeof(gpu::InstanceRecord), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                rhi::MemoryUsage::Upload, "instances");
     std::memcpy(gs.instances.mapped(), instanceRows.data(), instanceRows.size() * sizeof(gpu::InstanceRecord));
-    gs.instanceRecords = instanceRows;
   } else {
     gs.instances = tableBuffer(ctx, instanceRows, "instances");
   }
+  gs.instanceRecords = instanceRows;  // edits (render/instance_motion.h) start from it
   gs.lights = tableBuffer(ctx, lightRows, "lights");
   uploadEmissiveTriangles(ctx, scene, gs);
   gs.uploadMs = msSince(t0);

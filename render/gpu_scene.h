@@ -60,8 +60,9 @@ struct GpuScene {
   rhi::Tlas tlas;
   std::vector<VkAccelerationStructureInstanceKHR> tlasInstances;  // as built; updated when instances move
   std::vector<Draw> draws;  // raster: one per (instance, primitive or sphere set)
-  // Animated scenes: the CPU copy of the instance table (its buffer is host-visible then), and for
-  // each scene instance its row (-1: nothing to draw) — the row is also its TLAS instance index.
+  // The CPU copy of the instance table (its buffer is host-visible for animated scenes, and once an
+  // instance is edited), and for each scene instance its row (-1: nothing to draw) — the row is
+  // also its TLAS instance index.
   std::vector<gpu::InstanceRecord> instanceRecords;
   std::vector<int32_t> instanceRowOf;
   uint32_t lightCount = 0;
