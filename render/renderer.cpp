@@ -776,6 +776,13 @@ void Renderer::setInstanceTransform(uint32_t sceneInstance, const glm::mat4& wor
   impl_->motion.set(impl_->ctx, impl_->gpu, sceneInstance, worldFromObject);
 }
 
+void Renderer::reloadPipelines() {
+  impl_->ctx.waitIdle();
+  impl_->pipelines = Pipelines::create(impl_->ctx, impl_->gpu.bindless->layout());
+  impl_->rawPipelines.reset();
+  impl_->pathTracer.reset();
+}
+
 glm::mat4 Renderer::instanceTransform(uint32_t sceneInstance) const {
   return impl_->motion.get(impl_->scene, sceneInstance);
 }

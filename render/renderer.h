@@ -185,6 +185,9 @@ class Renderer {
   // waits for the device while its instance table becomes host-visible. Edits outlast runs.
   void setInstanceTransform(uint32_t sceneInstance, const glm::mat4& worldFromObject);
   glm::mat4 instanceTransform(uint32_t sceneInstance) const;  // as edited, posed or loaded
+  // Creates every pipeline again from shaders::get (shader hot reload); waits for the device.
+  // Start a new run afterwards (beginRun).
+  void reloadPipelines();
 
  private:
   struct Impl;

@@ -18,6 +18,7 @@
 #include "app/viewer/camera_control.h"
 #include "app/viewer/presenter.h"
 #include "app/viewer/selection.h"
+#include "app/viewer/shader_reload.h"
 #include "app/viewer/ui.h"
 #include "app/viewer/window.h"
 #include "core/image_io.h"
@@ -160,6 +161,9 @@ int runViewer(const ViewOptions& o) {
     };
     rhi::setFatalHook(showFatal);
     const auto failAt = injectedFailure();
+#if RAYSTER_SHADER_HOT_RELOAD
+    ShaderReloader shaderReloader(RAYSTER_GLSLC, RAYSTER_SHADER_DIR);
+#endif
 
     while (!window.shouldClose()) {
       window.poll();
@@ -196,6 +200,16 @@ int runViewer(const ViewOptions& o) {
         break;
       }
 
+#if RAYSTER_SHADER_HOT_RELOAD
+      if (const ShaderReloadResult reload = shaderReloader.poll(); !reload.error.empty()) {
+        st.message = reload.error;  // the old pipelines stay
+        log::warn("shader reload: {}", reload.error);
+      } else if (!reload.reloaded.empty()) {
+        renderer->reloadPipelines();
+        st.message = "reloaded " + std::to_string(reload.reloaded.size()) + " shader(s)";
+        restart = true;
+      }
+#endif
       const auto now = std::chrono::steady_clock::now();
       const float dt = std::chrono::duration<float>(now - last).count();
       last = now;
