@@ -207,6 +207,7 @@ int runViewer(const ViewOptions& o) {
       } else if (!reload.reloaded.empty()) {
         renderer->reloadPipelines();
         st.message = "reloaded " + std::to_string(reload.reloaded.size()) + " shader(s)";
+        log::info("shader reload: {} shader(s) recompiled, pipelines rebuilt", reload.reloaded.size());
         restart = true;
       }
 #endif
