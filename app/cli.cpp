@@ -121,6 +121,10 @@ int run(int argc, char** argv) {
                      "depth, normal, albedo, material, emissive, shadow-raw, shadow-denoised, reflection-raw, "
                      "reflection-denoised, ao-raw, ao-denoised, indirect-raw, indirect-denoised, and per "
                      "shadowed light N (0-7) shadowN-raw, shadowN-denoised; --mode pathtrace: variance (of the mean)");
+  std::vector<std::string> moveInstance;
+  render->add_option("--move-instance", moveInstance,
+                     "At frame FRAME (0-based) move the named instance to X,Y,Z: NAME:X,Y,Z@FRAME, repeatable "
+                     "(motion vectors and the TLAS follow)");
   render->add_option("--json", ro.jsonOutput, "Write per-pass GPU times and settings as JSON to this file");
 
   BenchOptions bo;
@@ -227,6 +231,10 @@ int run(int argc, char** argv) {
     ro.settings.taa = taa == "on";
     ro.settings.culling = culling == "on";
     if (spp > 0) ro.settings.frames = spp;
+    if (Status m = parseMoves(moveInstance, ro.settings.moves); !m) {
+      std::fprintf(stderr, "rayster: error: %s\n", m.error().message.c_str());
+      return int(ExitCode::BadArguments);
+    }
     ro.settings.ao = ao == "on";
     if (!indirect.empty()) ro.settings.indirect = indirect == "on";
     ro.validation = validation;

@@ -102,6 +102,23 @@ Result<std::vector<std::string>> parseAovs(const std::string& list) {
   return names;
 }
 
+Status parseMoves(const std::vector<std::string>& args, std::vector<render::RenderSettings::Move>& moves) {
+  for (const std::string& a : args) {
+    const size_t colon = a.rfind(':'), at = a.rfind('@');
+    render::RenderSettings::Move m;
+    unsigned frame = 0;
+    char extra = 0;
+    if (colon == std::string::npos || at == std::string::npos || at < colon || colon == 0 ||
+        std::sscanf(a.c_str() + colon + 1, "%f,%f,%f@%u%c", &m.position.x, &m.position.y, &m.position.z, &frame,
+                    &extra) != 4)
+      return makeError(ExitCode::BadArguments, "--move-instance must be NAME:X,Y,Z@FRAME, got '{}'", a);
+    m.instance = a.substr(0, colon);
+    m.frame = frame;
+    moves.push_back(std::move(m));
+  }
+  return okStatus();
+}
+
 int renderCommand(const RenderOptions& o) {
   // Check everything about the outputs before any GPU work, so bad arguments fail fast.
   if (auto s = checkOutputPath(o.output, "output", {".png", ".exr"}); !s) return fail(s.error());

@@ -1,5 +1,6 @@
 #pragma once
 #include <string>
+#include <vector>
 
 #include "render/renderer.h"
 
@@ -20,6 +21,9 @@ struct RenderOptions {
 };
 
 int renderCommand(const RenderOptions& options);
+
+// --move-instance NAME:X,Y,Z@FRAME (render and view): at frame FRAME the instance moves to X,Y,Z.
+Status parseMoves(const std::vector<std::string>& args, std::vector<render::RenderSettings::Move>& moves);
 
 int infoCommand();
 

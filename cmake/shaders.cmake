@@ -40,6 +40,7 @@ ${table}};
 } // namespace
 namespace rayster::shaders {
 std::span<const uint32_t> get(std::string_view name) {
+  if (auto words = overrideOf(name); !words.empty()) return words;
   for (const auto& [key, words] : kTable)
     if (key == name) return words;
   return {};
@@ -47,6 +48,6 @@ std::span<const uint32_t> get(std::string_view name) {
 } // namespace rayster::shaders
 " @ONLY)
   file(COPY_FILE ${cpp}.in ${cpp} ONLY_IF_DIFFERENT)
-  add_library(${target} STATIC ${cpp} ${incs})
+  add_library(${target} STATIC ${cpp} ${dir}/overrides.cpp ${incs})
   target_include_directories(${target} PUBLIC ${CMAKE_SOURCE_DIR} PRIVATE ${gen})
 endfunction()

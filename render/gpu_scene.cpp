@@ -175,14 +175,15 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
 
   gs.geometries = tableBuffer(ctx, geometryRows, "geometries");
   if (scene.animated()) {
+    gs.instancesDynamic = true;
     // Rewritten by the host every frame while instances move (frames are serialised).
     gs.instances = rhi::Buffer(ctx, instanceRows.size() * sizeof(gpu::InstanceRecord), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                rhi::MemoryUsage::Upload, "instances");
     std::memcpy(gs.instances.mapped(), instanceRows.data(), instanceRows.size() * sizeof(gpu::InstanceRecord));
-    gs.instanceRecords = instanceRows;
   } else {
     gs.instances = tableBuffer(ctx, instanceRows, "instances");
   }
+  gs.instanceRecords = instanceRows;  // edits (render/instance_motion.h) start from it
   gs.lights = tableBuffer(ctx, lightRows, "lights");
   std::vector<gpu::DrawRecord> drawRows;
   for (const GpuScene::Draw& d : gs.draws)

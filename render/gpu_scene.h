@@ -65,10 +65,12 @@ struct GpuScene {
   // The culling pass's per-frame buffers and their graph states (render/passes/cull.h). Shared
   // ownership only so the type may stay incomplete here; mutable state of a const scene.
   std::shared_ptr<struct CullBuffers> cull;
-  // Animated scenes: the CPU copy of the instance table (its buffer is host-visible then), and for
-  // each scene instance its row (-1: nothing to draw) — the row is also its TLAS instance index.
+  // The CPU copy of the instance table (its buffer is host-visible for animated scenes, and once an
+  // instance is edited), and for each scene instance its row (-1: nothing to draw) — the row is
+  // also its TLAS instance index.
   std::vector<gpu::InstanceRecord> instanceRecords;
   std::vector<int32_t> instanceRowOf;
+  bool instancesDynamic = false;  // animated, or edited since upload: the instance table is rewritten per frame
   uint32_t lightCount = 0;
   bool anyAlphaTested = false;  // MASK or BLEND somewhere: rays may not be forced opaque
   uint64_t triangleCount = 0;   // over all instances

@@ -18,6 +18,7 @@
 #include "graph/graph.h"
 #include "render/gpu_scene.h"
 #include "render/history.h"
+#include "render/instance_motion.h"
 #include "render/jitter.h"
 #include "render/passes/cull.h"
 #include "render/passes/denoise.h"
@@ -170,7 +171,7 @@ struct Renderer::Impl {
   RasterFrame raster;  // the raster mode's passes (render/raster_frame.h)
   uint32_t frameIndex = 0;
   uint32_t taaFrames = 0;  // frames in the TAA history since its last reset
-  scene::Scene pose;  // animated scenes: nodes, instances and animations only, posed each frame
+  InstanceMotion motion;  // animation and edits (render/instance_motion.h)
 
   Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
       : ctx(c), scene(s), gpu(std::move(g)), pipelines(Pipelines::create(c, gpu.bindless->layout())),
@@ -187,6 +188,12 @@ struct Renderer::Impl {
     const scene::Aabb b = scene.bounds();
     const float diagonal = b.valid() ? glm::length(b.max - b.min) : 0.0f;
     return diagonal > 0.0f ? kAoRadiusFraction * diagonal : 1.0f;
+  }
+
+  int32_t findInstance(const std::string& name) const {
+    for (size_t i = 0; i < scene.instances.size(); ++i)
+      if (scene.instances[i].name == name && gpu.instanceRowOf[i] >= 0) return int32_t(i);
+    return -1;
   }
 
   uint32_t shadowLights() const { return manyLights ? 0u : std::min(gpu.lightCount, gpu::kMaxShadowLights); }
@@ -250,28 +257,6 @@ struct Renderer::Impl {
     fc.maxSpecularBounces = specularBounces(s);
     std::memcpy(constants.mapped(), &fc, sizeof(fc));
     return fc.unjitteredClipFromWorld;
-  }
-
-  // Poses an animated scene at `seconds`: the instance table gets the new transforms (the old ones
-  // become prevWorldFromObject, for motion vectors; on the first frame both are the new one) and
-  // the TLAS instances follow. Returns whether anything moved since the last frame.
-  bool poseAnimation(float seconds, bool first) {
-    bool moved = scene::evaluateAnimations(pose, seconds, true);
-    for (size_t i = 0; i < pose.instances.size(); ++i) {
-      const int32_t row = gpu.instanceRowOf[i];
-      if (row < 0) continue;
-      const glm::mat4& m = pose.instances[i].worldFromObject;
-      gpu::InstanceRecord& r = gpu.instanceRecords[row];
-      r.prevWorldFromObject = first ? m : r.worldFromObject;
-      r.worldFromObject = m;
-      r.normalFromObject = glm::inverseTranspose(m);
-      VkTransformMatrixKHR& t = gpu.tlasInstances[row].transform;  // 3x4 row-major
-      for (int rr = 0; rr < 3; ++rr)
-        for (int c = 0; c < 4; ++c) t.matrix[rr][c] = m[c][rr];
-    }
-    std::memcpy(gpu.instances.mapped(), gpu.instanceRecords.data(),
-                gpu.instanceRecords.size() * sizeof(gpu::InstanceRecord));
-    return moved && !first;
   }
 
   void ensureHistory(const RenderSettings& s) {
@@ -436,11 +421,10 @@ struct Renderer::Impl {
 
     ensureHistory(s);
     run->animated = scene.animated() && !gpu.instanceRecords.empty();
-    if (run->animated) {
-      pose.nodes = scene.nodes;
-      pose.instances = scene.instances;
-      pose.animations = scene.animations;
-    }
+    motion.beginRun(scene, run->animated);
+    for (const RenderSettings::Move& m : s.moves)
+      if (findInstance(m.instance) < 0)
+        return makeError(ExitCode::BadArguments, "--move-instance: scene '{}' has no instance '{}'", scene.name, m.instance);
     taaHistory.valid = false;  // every run starts its own history
     run->prevCamera = *cam;
     const size_t pixels = size_t(s.width) * s.height;
@@ -468,6 +452,13 @@ struct Renderer::Impl {
     {
       const Clock::time_point frameStart = Clock::now();
       frameIndex = f;
+      for (const RenderSettings::Move& m : s.moves)  // before the constants: the first edit may move the table
+        if (m.frame == f) {
+          const uint32_t i = uint32_t(findInstance(m.instance));
+          glm::mat4 w = motion.get(scene, i);
+          w[3] = glm::vec4(m.position, 1.0f);
+          motion.set(ctx, gpu, i, w);
+        }
       const scene::Camera camera = control.camera  ? *control.camera
                                    : s.cameraPath ? cameraOnPath(*r.cam, s, f)
                                                   : *r.cam;
@@ -482,12 +473,13 @@ struct Renderer::Impl {
       graph::RenderGraph graph(&ctx, &transients);
       FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, gpu.bindless->set()};
       bool moving = s.cameraPath || control.moving;
-      if (animated) {
-        const bool moved = poseAnimation(s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0);
+      {
+        const bool moved =
+            motion.update(gpu, animated, s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0).moved;
         // Motion vectors of this frame still show last frame's motion after the pose stops.
         moving = moving || moved || movedBefore;
         movedBefore = moved;
-        if (!rasterMode)
+        if (motion.takeTlasRefit(!rasterMode) && !rasterMode)  // the raster mode refits when it leaves
           graph.addPass("tlas-update", [](graph::PassBuilder& b) { b.sideEffect(); },
                         [this](graph::PassContext& pc) { gpu.tlas.update(pc.cmd, gpu.tlasInstances); });
       }
@@ -783,6 +775,21 @@ void Renderer::refreshLights() {
   if (rows.empty() || rows.size() != m.gpu.lightCount) return;  // edits only, never a new count
   m.gpu.lights = rhi::createBufferWithData(m.ctx, std::as_bytes(std::span(rows)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                            "lights");
+}
+
+void Renderer::setInstanceTransform(uint32_t sceneInstance, const glm::mat4& worldFromObject) {
+  impl_->motion.set(impl_->ctx, impl_->gpu, sceneInstance, worldFromObject);
+}
+
+void Renderer::reloadPipelines() {
+  impl_->ctx.waitIdle();
+  impl_->pipelines = Pipelines::create(impl_->ctx, impl_->gpu.bindless->layout());
+  impl_->rawPipelines.reset();
+  impl_->pathTracer.reset();
+}
+
+glm::mat4 Renderer::instanceTransform(uint32_t sceneInstance) const {
+  return impl_->motion.get(impl_->scene, sceneInstance);
 }
 
 uint64_t Renderer::deviceBytesUsed() const { return impl_->ctx.memory().stats().usedBytes; }

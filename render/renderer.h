@@ -80,6 +80,14 @@ struct RenderSettings {
   // hybrid's reflection/refraction loop starts at the G-buffer surface and traces up to
   // maxDepth − 1 more rays (at least 1, at most gpu::kMaxSpecularBounces).
   uint32_t maxDepth = 8;
+  // Scripted edits (--move-instance): at frame `frame` of the run, the named scene instance's
+  // translation becomes `position` (it stays there); it moves with motion vectors like animation.
+  struct Move {
+    std::string instance;
+    glm::vec3 position{0.0f};
+    uint32_t frame = 0;
+  };
+  std::vector<Move> moves;
   // Called after each frame with (frames done, frames in all), e.g. to show progress.
   std::function<void(uint32_t, uint32_t)> progress;
 };
@@ -177,6 +185,15 @@ class Renderer {
   // The scene's lights were edited in place (same number): uploads them again. The next frame
   // should be a cut, or the denoisers' histories show the old lighting for a while.
   void refreshLights();
+  // Moves scene instance `sceneInstance` (an index into scene.instances) from the next frame on:
+  // the instance table (prevWorldFromObject = the last frame's transform, so motion vectors and the
+  // denoisers follow) and the TLAS (refit). Call between frames; the first edit of a static scene
+  // waits for the device while its instance table becomes host-visible. Edits outlast runs.
+  void setInstanceTransform(uint32_t sceneInstance, const glm::mat4& worldFromObject);
+  glm::mat4 instanceTransform(uint32_t sceneInstance) const;  // as edited, posed or loaded
+  // Creates every pipeline again from shaders::get (shader hot reload); waits for the device.
+  // Start a new run afterwards (beginRun).
+  void reloadPipelines();
 
  private:
   struct Impl;

@@ -72,6 +72,30 @@ bool Ui::wantsKeyboard() const { return ImGui::GetIO().WantCaptureKeyboard; }
 
 ImDrawData* Ui::draw() {
   ImGui::Render();
+  frameOpen_ = false;
+  return ImGui::GetDrawData();
+}
+
+ImDrawData* Ui::drawMessage(const std::string& message) {
+  if (frameOpen_) ImGui::EndFrame();
+  ImGui_ImplVulkan_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos({0, 0});
+  ImGui::SetNextWindowSize(size);
+  ImGui::Begin("##fatal", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings);
+  ImGui::SetWindowFontScale(2.0f);
+  ImGui::SetCursorPosY(size.y * 0.4f);
+  ImGui::PushTextWrapPos(size.x - 16.0f);
+  ImGui::TextColored({1.0f, 0.4f, 0.3f, 1.0f}, "Rayster: error: %s", message.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::SetWindowFontScale(1.0f);
+  ImGui::TextUnformatted("The viewer exits in a few seconds.");
+  ImGui::End();
+  ImGui::Render();
+  frameOpen_ = false;
   return ImGui::GetDrawData();
 }
 
@@ -79,6 +103,7 @@ bool Ui::build(PanelState& st, CameraControl& camera, scene::Scene& scene, const
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
+  frameOpen_ = true;
   render::RenderSettings& s = st.settings;
   const render::RenderSettings before = s;
   ImGui::SetNextWindowPos({8, 8}, ImGuiCond_FirstUseEver);
@@ -160,6 +185,21 @@ bool Ui::build(PanelState& st, CameraControl& camera, scene::Scene& scene, const
         ImGui::TreePop();
       }
       ImGui::PopID();
+    }
+  }
+  if (ImGui::CollapsingHeader("Selection", ImGuiTreeNodeFlags_DefaultOpen)) {
+    Selection& sel = st.selection;
+    if (sel.instance < 0 || size_t(sel.instance) >= scene.instances.size()) {
+      ImGui::TextDisabled("click an object to select it");
+    } else {
+      const std::string& name = scene.instances[size_t(sel.instance)].name;
+      ImGui::Text("%s", name.empty() ? ("instance " + std::to_string(sel.instance)).c_str() : name.c_str());
+      bool& e = sel.edited;
+      e |= ImGui::DragFloat3("position", &sel.trs.position.x, 0.01f);
+      e |= ImGui::DragFloat3("rotation", &sel.trs.rotationDeg.x, 0.5f, -360.0f, 360.0f, "%.1f");
+      e |= ImGui::DragFloat3("scale", &sel.trs.scale.x, 0.01f, 0.001f, 1000.0f);
+      ImGui::TextDisabled("hold G and move the mouse to move it");
+      if (ImGui::Button("deselect")) sel.instance = -1;
     }
   }
   if (ImGui::CollapsingHeader("GPU timings", ImGuiTreeNodeFlags_DefaultOpen)) {

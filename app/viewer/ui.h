@@ -8,6 +8,7 @@
 #include <volk.h>
 
 #include "app/viewer/camera_control.h"
+#include "app/viewer/selection.h"
 #include "render/renderer.h"
 
 struct GLFWwindow;
@@ -29,6 +30,7 @@ struct PanelState {
   bool screenshot = false; // "screenshot" pressed
   bool lightsChanged = false;  // a light of the scene was edited in place
   int debugView = 0;           // 0: the final image; i: render::aovNames()[i - 1], read back each frame
+  Selection selection;         // the picked instance (click in the viewport)
   std::string message;     // errors and notices, shown in red at the top
   // Statistics of the last frames.
   std::vector<std::pair<std::string, double>> passes;
@@ -47,12 +49,16 @@ class Ui {
   // Builds the panel; returns true when a render setting changed.
   bool build(PanelState& state, CameraControl& camera, scene::Scene& scene, const std::string& device);
   ImDrawData* draw();  // finishes the frame's UI
+  // A frame of its own showing only `message` across the window (device loss, memory exhaustion);
+  // closes the panel's frame first if one is open.
+  ImDrawData* drawMessage(const std::string& message);
   bool wantsMouse() const;
   bool wantsKeyboard() const;
 
  private:
   rhi::Context& ctx_;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  bool frameOpen_ = false;  // between build() and draw()
 };
 
 } // namespace rayster::app

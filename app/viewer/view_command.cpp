@@ -1,8 +1,10 @@
 // Command-line parsing of `rayster view`.
+#include <algorithm>
 #include <cstdio>
 
 #include <CLI/CLI.hpp>
 
+#include "app/render_command.h"
 #include "app/viewer/viewer.h"
 #include "core/error.h"
 
@@ -32,6 +34,10 @@ void addViewCommand(CLI::App& cli, ViewCommand& v) {
   view->add_flag("--camera-path", o.settings.cameraPath, "Play the scene's camera path");
   view->add_option("--path-fps", o.settings.pathFps, "Frames per second of path playback (default 60)")
       ->check(CLI::Range(1.0f, 10000.0f));
+  view->add_option("--move-instance", v.moveInstance,
+                   "At frame FRAME move the named instance to X,Y,Z: NAME:X,Y,Z@FRAME (repeatable; scripted tests)");
+  view->add_option("--debug-view", o.debugView,
+                   "Show this stage instead of the final image (the panel's view list, e.g. normal, motion)");
   view->fallthrough();
 }
 
@@ -55,6 +61,10 @@ int viewCommand(ViewCommand& v, bool validation, const std::string& device, bool
     o.resizes.push_back({f, w, h});
   }
   if (!o.screenshot.empty() && o.screenshot.size() < 4) return bad("--screenshot must end in .png or .exr");
+  if (Status m = parseMoves(v.moveInstance, o.settings.moves); !m) return bad(m.error().message);
+  const auto& aovs = render::aovNames();
+  if (!o.debugView.empty() && std::find(aovs.begin(), aovs.end(), o.debugView) == aovs.end())
+    return bad("--debug-view: unknown view '" + o.debugView + "'");
   o.settings.primary = v.primary == "rt" ? render::Primary::Traced : render::Primary::Raster;
   o.settings.taa = v.taa == "on";
   o.settings.tonemap = *render::parseTonemapper(v.tonemap);

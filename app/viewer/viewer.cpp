@@ -3,7 +3,10 @@
 // of its output image.
 #include "app/viewer/viewer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <functional>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -14,6 +17,8 @@
 
 #include "app/viewer/camera_control.h"
 #include "app/viewer/presenter.h"
+#include "app/viewer/selection.h"
+#include "app/viewer/shader_reload.h"
 #include "app/viewer/ui.h"
 #include "app/viewer/window.h"
 #include "core/image_io.h"
@@ -56,13 +61,46 @@ uint64_t estimateRays(const render::FrameStats& stats, uint32_t pixels, uint32_t
   return rays;
 }
 
-// Device loss and memory exhaustion end the process (rhi/vk_check.h); the window says why first.
-GLFWwindow* gFatalWindow = nullptr;
+// Device loss and memory exhaustion end the process (rhi/vk_check.h); the window says why first,
+// in its title and drawn inside it, for kFatalSeconds. After a device loss drawing may fail: a
+// Vulkan error inside the hook exits at once with the same documented code (the title stays).
+constexpr double kFatalSeconds = 3.0;  // long enough to read one line
+std::function<void(const char*)> gShowFatal;
 void showFatal(const char* message) {
-  if (!gFatalWindow) return;
-  glfwSetWindowTitle(gFatalWindow, (std::string("Rayster: error: ") + message + " (exiting)").c_str());
-  for (int i = 0; i < 30; ++i) glfwWaitEventsTimeout(0.1);  // three seconds to read it
+  if (gShowFatal) gShowFatal(message);
 }
+
+// Tests only: RAYSTER_VIEWER_FAIL_AT=oom:F or lost:F fails as that Vulkan error at frame F.
+std::optional<std::pair<VkResult, uint32_t>> injectedFailure() {
+  const char* v = std::getenv("RAYSTER_VIEWER_FAIL_AT");
+  unsigned frame = 0;
+  char kind[8] = {};
+  if (!v || std::sscanf(v, "%7[a-z]:%u", kind, &frame) != 2) return std::nullopt;
+  return std::pair{std::string(kind) == "lost" ? VK_ERROR_DEVICE_LOST : VK_ERROR_OUT_OF_DEVICE_MEMORY, frame};
+}
+
+// A click selects: a left press and release that did not drag (dragging turns the camera).
+struct MousePick {
+  static constexpr float kClickPixels = 3.0f;
+  bool down = false, armed = false;
+  glm::vec2 last{0.0f}, delta{0.0f};
+  float travelled = 0.0f;
+  // Returns the cursor position of a click that ended this frame.
+  std::optional<glm::vec2> update(GLFWwindow* w, bool mouseFree) {
+    double x = 0, y = 0;
+    glfwGetCursorPos(w, &x, &y);
+    const glm::vec2 now(x, y);
+    delta = now - last;
+    last = now;
+    const bool pressed = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    std::optional<glm::vec2> click;
+    if (pressed && !down) armed = mouseFree, travelled = 0.0f;  // a press on the panel is the panel's
+    if (down) travelled += glm::length(delta);
+    if (!pressed && down && armed && mouseFree && travelled <= kClickPixels) click = now;
+    down = pressed;
+    return click;
+  }
+};
 
 const scene::Camera& startCamera(const scene::Scene& scene, const std::string& name) {
   for (const auto& c : scene.cameras)
@@ -94,6 +132,10 @@ int runViewer(const ViewOptions& o) {
     st.settings = o.settings;
     st.vsync = o.vsync;
     st.playPath = o.settings.cameraPath;
+    const auto& aovs = render::aovNames();
+    if (auto it = std::find(aovs.begin(), aovs.end(), o.debugView); it != aovs.end())
+      st.debugView = int(it - aovs.begin()) + 1;
+    MousePick pick;
     CameraControl camera;
     camera.reset(startCamera(*scene, o.settings.camera));
     bool showUi = !o.hideUi, restart = true, cut = false;
@@ -101,8 +143,27 @@ int runViewer(const ViewOptions& o) {
     uint32_t frame = 0;
     auto last = std::chrono::steady_clock::now();
     GLFWwindow* w = window.handle();
-    gFatalWindow = w;
+    gShowFatal = [&](const char* message) {
+      glfwSetWindowTitle(w, (std::string("Rayster: error: ") + message + " (exiting)").c_str());
+      Image8 black;
+      const VkExtent2D e = presenter.swapchain().extent();
+      black.width = int(e.width);
+      black.height = int(e.height);
+      black.rgba.assign(size_t(e.width) * e.height * 4, 0);
+      for (size_t i = 3; i < black.rgba.size(); i += 4) black.rgba[i] = 255;
+      log::info("shown in the window: {}", message);
+      const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(kFatalSeconds);
+      while (std::chrono::steady_clock::now() < until) {
+        glfwPollEvents();
+        presenter.present(renderer->outputImage(), ui.drawMessage(message), nullptr, &black);
+        glfwWaitEventsTimeout(0.1);
+      }
+    };
     rhi::setFatalHook(showFatal);
+    const auto failAt = injectedFailure();
+#if RAYSTER_SHADER_HOT_RELOAD
+    ShaderReloader shaderReloader(RAYSTER_GLSLC, RAYSTER_SHADER_DIR);
+#endif
 
     while (!window.shouldClose()) {
       window.poll();
@@ -133,11 +194,23 @@ int runViewer(const ViewOptions& o) {
         if (!r) return fail(r.error());
         renderer = std::move(*r);
         camera.reset(scene->cameras.front());
+        st.selection = {};
         st.message = "loaded " + std::filesystem::path(path).filename().string();
         restart = true;
         break;
       }
 
+#if RAYSTER_SHADER_HOT_RELOAD
+      if (const ShaderReloadResult reload = shaderReloader.poll(); !reload.error.empty()) {
+        st.message = reload.error;  // the old pipelines stay
+        log::warn("shader reload: {}", reload.error);
+      } else if (!reload.reloaded.empty()) {
+        renderer->reloadPipelines();
+        st.message = "reloaded " + std::to_string(reload.reloaded.size()) + " shader(s)";
+        log::info("shader reload: {} shader(s) recompiled, pipelines rebuilt", reload.reloaded.size());
+        restart = true;
+      }
+#endif
       const auto now = std::chrono::steady_clock::now();
       const float dt = std::chrono::duration<float>(now - last).count();
       last = now;
@@ -168,7 +241,28 @@ int runViewer(const ViewOptions& o) {
         st.frameScene = false;
         cut = true;
       }
-      const bool moved = camera.update(w, dt, window.takeScroll(), !ui.wantsMouse(), !ui.wantsKeyboard());
+      // Holding G moves the selection with the mouse instead of the camera.
+      const bool grabbing = st.selection.instance >= 0 && !ui.wantsKeyboard() && glfwGetKey(w, GLFW_KEY_G) == GLFW_PRESS;
+      if (const auto clicked = pick.update(w, !ui.wantsMouse() && !grabbing)) {
+        std::vector<glm::mat4> transforms(scene->instances.size());
+        for (size_t i = 0; i < transforms.size(); ++i) transforms[i] = renderer->instanceTransform(uint32_t(i));
+        int ww = 0, wh = 0;
+        glfwGetWindowSize(w, &ww, &wh);
+        st.selection.instance = pickInstance(*scene, transforms, camera.camera(), *clicked, glm::vec2(ww, wh));
+        if (st.selection.instance >= 0)
+          st.selection.trs = decompose(transforms[size_t(st.selection.instance)]);
+      }
+      if (grabbing && pick.delta != glm::vec2(0.0f)) {
+        int ww = 0, wh = 0;
+        glfwGetWindowSize(w, &ww, &wh);
+        st.selection.trs.position += dragOffset(camera.camera(), st.selection.trs.position, pick.delta, float(wh));
+        st.selection.edited = true;
+      }
+      if (st.selection.edited && st.selection.instance >= 0)
+        renderer->setInstanceTransform(uint32_t(st.selection.instance), compose(st.selection.trs));
+      st.selection.edited = false;
+      const bool moved =
+          camera.update(w, dt, window.takeScroll(), !ui.wantsMouse() && !grabbing, !ui.wantsKeyboard());
 
       if (restart) {
         st.settings.width = size.width;
@@ -193,6 +287,7 @@ int runViewer(const ViewOptions& o) {
       control.readback = shoot || st.debugView != 0;
       cut = false;
       const render::FrameStats stats = renderer->renderFrame(control);
+      if (failAt && failAt->second == frame) VK_CHECK(failAt->first);
       if (st.playPath) camera.reset(stats.camera);  // leaving the path continues from where it is
       st.passes = stats.passes;
       recordHistory(st.gpuHistory, float(stats.gpuMs));
@@ -231,7 +326,7 @@ int runViewer(const ViewOptions& o) {
     }
     vk.waitIdle();
     rhi::setFatalHook(nullptr);
-    gFatalWindow = nullptr;
+    gShowFatal = nullptr;
   }
   if (vk.validationEnabled() && vk.validationErrors() > 0) {
     std::fprintf(stderr, "rayster: error: %u Vulkan validation error(s)\n", vk.validationErrors());

@@ -22,6 +22,7 @@ struct ViewOptions {
     uint32_t frame, width, height;
   };
   std::vector<Resize> resizes;  // --resize-at F:WxH
+  std::string debugView;  // --debug-view NAME: start showing this stage (render::aovNames())
   bool hideUi = false;
   bool vsync = true;
   bool validation = false;
@@ -36,6 +37,7 @@ struct ViewCommand {
   ViewOptions options;
   std::string size = "1280x720", primary = "raster", taa = "on", tonemap = "aces";
   std::vector<std::string> resizeAt;
+  std::vector<std::string> moveInstance;
 };
 void addViewCommand(CLI::App& cli, ViewCommand& view);
 int viewCommand(ViewCommand& view, bool validation, const std::string& device, bool debugLabels);

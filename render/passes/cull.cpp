@@ -76,7 +76,9 @@ CulledDraws cullDraws(graph::RenderGraph& graph, const FrameInputs& in) {
       });
   c.hizFresh = false;
   // Occlusion only where last frame's depth is this frame's (see cull.h).
-  const bool occlusion = in.scene.instanceRecords.empty() && !in.scene.anyAlphaTested;
+  // Where instances can move (animated, or edited in the viewer) last frame's depth no longer
+  // stands for this frame's, so only frustum culling applies.
+  const bool occlusion = !in.scene.instancesDynamic && !in.scene.anyAlphaTested;
   const uint32_t flags = c.enabled ? gpu::kCullFrustum | (occlusion ? gpu::kCullOcclusion : 0u) : 0u;
   graph.addPass(
       "cull",

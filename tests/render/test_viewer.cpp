@@ -4,6 +4,8 @@
 // seeds, so the comparison tolerance only covers the blit (exact for same-size copies).
 #include <sys/wait.h>
 
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -21,8 +23,8 @@ const std::string kXvfb = "xvfb-run -a -s '-screen 0 1024x768x24' ";
 
 bool haveXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
 
-RunResult runUnderXvfb(const std::string& args) {
-  std::string cmd = kXvfb + "env XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} RAYSTER_VALIDATION=1 " +
+RunResult runUnderXvfb(const std::string& args, const std::string& env = "") {
+  std::string cmd = kXvfb + "env XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} RAYSTER_VALIDATION=1 " + env + " " +
                     std::string(RAYSTER_BINARY) + " " + args + " 2>&1";
   RunResult r;
   FILE* pipe = popen(cmd.c_str(), "r");
@@ -90,6 +92,87 @@ TEST(Viewer, ResizeMidRunIsCleanUnderValidation) {
   ASSERT_TRUE(img.ok());
   EXPECT_EQ(img->width, 128);
   EXPECT_EQ(img->height, 96);
+}
+
+// Scripted edits (--move-instance, the same path as the panel's drags): the block's pixels move,
+// its motion vectors are nonzero where a still scene's are zero, and validation stays clean.
+TEST(Viewer, MovedInstanceMovesPixelsWithMotionVectors) {
+  const auto dir = testDir();
+  const std::string common = "render builtin:cornell --primary raster --frames 3 --size 160x120 --aov motion";
+  RunResult still = runRayster(common + " -o " + (dir / "still.png").string());
+  ASSERT_EQ(still.exitCode, 0) << still.output;
+  RunResult moved = runRayster(common + " --move-instance short-block:0.8,0,0.3@2 -o " + (dir / "moved.png").string());
+  ASSERT_EQ(moved.exitCode, 0) << moved.output;
+  EXPECT_EQ(moved.output.find("validation error"), std::string::npos) << moved.output;
+  auto a = readPng(dir / "still.png");
+  auto b = readPng(dir / "moved.png");
+  ASSERT_TRUE(a.ok() && b.ok());
+  const ImageDiff d = compare(*a, *b, 8);
+  EXPECT_LT(d.fractionWithinTolerance, 0.98) << "the block did not move";
+  auto countMoving = [](const ImageF& mv) {
+    size_t n = 0;
+    for (size_t i = 0; i < mv.rgba.size(); i += 4) n += std::abs(mv.rgba[i]) + std::abs(mv.rgba[i + 1]) > 1e-6f;
+    return n;
+  };
+  auto stillMotion = readExr(dir / "still.motion.exr");
+  auto movedMotion = readExr(dir / "moved.motion.exr");
+  ASSERT_TRUE(stillMotion.ok() && movedMotion.ok());
+  EXPECT_EQ(countMoving(*stillMotion), 0u);
+  EXPECT_GT(countMoving(*movedMotion), size_t(160 * 120 / 100)) << "no motion vectors on the moved block";
+
+  // A bad name is a bad argument, before any output.
+  RunResult bad = runRayster(common + " --move-instance nothing:0,0,0@1 -o " + (dir / "bad.png").string());
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+}
+
+TEST(Viewer, MovedInstanceMatchesHeadlessRender) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (scripts/setup.sh installs xvfb and xauth)";
+  const auto dir = testDir();
+  const std::string common = "builtin:cornell --primary raster --frames 4 --size 160x120 "
+                             "--move-instance short-block:0.8,0,0.3@2";
+  RunResult v = runUnderXvfb("view " + common + " --hide-ui --screenshot " + (dir / "view.png").string());
+  ASSERT_EQ(v.exitCode, 0) << v.output;
+  RunResult h = runRayster("render " + common + " -o " + (dir / "render.png").string());
+  ASSERT_EQ(h.exitCode, 0) << h.output;
+  auto viewed = readPng(dir / "view.png");
+  auto rendered = readPng(dir / "render.png");
+  ASSERT_TRUE(viewed.ok() && rendered.ok());
+  const ImageDiff d = compare(*rendered, *viewed, 1);
+  EXPECT_GE(d.fractionWithinTolerance, 0.999) << "max difference " << d.maxChannelDiff;
+}
+
+// --debug-view shows what `--aov` writes, mapped for display the same way.
+TEST(Viewer, DebugViewMatchesRenderAov) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (scripts/setup.sh installs xvfb and xauth)";
+  const auto dir = testDir();
+  const std::string common = "builtin:cornell --primary raster --frames 2 --size 160x120";
+  RunResult v = runUnderXvfb("view " + common + " --debug-view normal --hide-ui --screenshot " +
+                             (dir / "view.png").string());
+  ASSERT_EQ(v.exitCode, 0) << v.output;
+  RunResult h = runRayster("render " + common + " --aov normal -o " + (dir / "render.png").string());
+  ASSERT_EQ(h.exitCode, 0) << h.output;
+  auto viewed = readPng(dir / "view.png");
+  auto rendered = readPng(dir / "render.normal.png");
+  ASSERT_TRUE(viewed.ok() && rendered.ok());
+  EXPECT_FALSE(rejectEmpty(*viewed, 160, 120).has_value());
+  const ImageDiff d = compare(*rendered, *viewed, 2);
+  EXPECT_GE(d.fractionWithinTolerance, 0.999) << "max difference " << d.maxChannelDiff;
+  RunResult bad = runRayster("view " + common + " --debug-view nonsense");
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+}
+
+// Memory exhaustion (injected) is drawn inside the window for three seconds, then the process exits
+// with the documented code.
+TEST(Viewer, FatalErrorIsShownInTheWindowBeforeExiting) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (scripts/setup.sh installs xvfb and xauth)";
+  const auto start = std::chrono::steady_clock::now();
+  RunResult v = runUnderXvfb("view builtin:cornell --primary raster --frames 5 --size 160x120",
+                             "RAYSTER_VIEWER_FAIL_AT=oom:1");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(v.exitCode, 7) << v.output;
+  EXPECT_NE(v.output.find("shown in the window: out of device memory"), std::string::npos) << v.output;
+  EXPECT_EQ(v.output.find("validation error"), std::string::npos) << v.output;
+  EXPECT_GE(seconds, 3.0);
 }
 
 TEST(Viewer, NoDisplayFailsCleanly) {

@@ -1,0 +1,36 @@
+#pragma once
+// Shader hot reload (development builds, RAYSTER_SHADER_HOT_RELOAD): polls the modification times
+// of shaders/ once per second, recompiles changed NAME.STAGE.glsl files with glslc the way
+// cmake/shaders.cmake does, and installs the SPIR-V as shaders::setOverride; the caller then
+// recreates the pipelines. A change to an included file (lib/, shared/) recompiles every shader.
+// A failed compile installs nothing: the old modules stay, and the compiler's message is returned.
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace rayster::app {
+
+struct ShaderReloadResult {
+  std::vector<std::string> reloaded;  // shader names (e.g. "tonemap.comp") with new SPIR-V
+  std::string error;                  // glslc's output of the first failed compile; empty: none
+};
+
+class ShaderReloader {
+ public:
+  ShaderReloader(std::filesystem::path glslc, std::filesystem::path shaderDir);
+  // At most once per second (or now, with `force`): compiles what changed since the last poll.
+  ShaderReloadResult poll(bool force = false);
+  // Compiles one shader source (shaders/NAME.STAGE.glsl); on success installs it.
+  ShaderReloadResult compile(const std::filesystem::path& source);
+
+ private:
+  std::map<std::filesystem::path, std::filesystem::file_time_type> scan() const;
+  std::filesystem::path glslc_, dir_;
+  std::map<std::filesystem::path, std::filesystem::file_time_type> times_;
+  std::chrono::steady_clock::time_point lastPoll_{};
+};
+
+} // namespace rayster::app

@@ -1,0 +1,63 @@
+// Shader hot reload (app/viewer/shader_reload.h): a broken edit reports glslc's error and keeps the
+// module; a valid edit installs new SPIR-V that shaders::get returns.
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "app/viewer/shader_reload.h"
+#include "shaders/embedded.h"
+
+namespace rayster::app {
+namespace {
+namespace fs = std::filesystem;
+
+std::string readText(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(ViewerShaderReload, ErrorKeepsOldModuleAndValidChangeReplacesIt) {
+  const fs::path src = fs::path(RAYSTER_SHADER_DIR);
+  const fs::path dir = fs::temp_directory_path() / ("rayster-reload-test-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy(src, dir, fs::copy_options::recursive);
+  const std::string name = "tonemap.comp";
+  const fs::path file = dir / (name + ".glsl");
+  const std::string original = readText(file);
+  const std::vector<uint32_t> embedded(shaders::get(name).begin(), shaders::get(name).end());
+  ASSERT_FALSE(embedded.empty());
+
+  ShaderReloader reloader(RAYSTER_GLSLC, dir);
+  EXPECT_TRUE(reloader.poll(true).reloaded.empty());  // nothing changed yet
+
+  std::ofstream(file) << original << "\nvoid broken() { this is not glsl }\n";
+  fs::last_write_time(file, fs::last_write_time(file) + std::chrono::seconds(2));
+  ShaderReloadResult bad = reloader.poll(true);
+  EXPECT_TRUE(bad.reloaded.empty());
+  EXPECT_NE(bad.error.find("error"), std::string::npos) << bad.error;
+  EXPECT_EQ(std::vector<uint32_t>(shaders::get(name).begin(), shaders::get(name).end()), embedded);
+
+  std::ofstream(file) << original << "\nfloat unusedButDifferent(float x) { return x * 3.0; }\n"
+                      << "const float kReloadMarker = 42.0;\n";
+  fs::last_write_time(file, fs::last_write_time(file) + std::chrono::seconds(4));
+  ShaderReloadResult good = reloader.poll(true);
+  EXPECT_TRUE(good.error.empty()) << good.error;
+  ASSERT_EQ(good.reloaded, std::vector<std::string>{name});
+  const std::vector<uint32_t> now(shaders::get(name).begin(), shaders::get(name).end());
+  EXPECT_FALSE(now.empty());
+  EXPECT_NE(now, embedded);
+  shaders::setOverride(name, embedded);  // leave the process's shaders as built
+  fs::remove_all(dir);
+}
+
+} // namespace
+} // namespace rayster::app
