@@ -23,7 +23,6 @@ const uint kTaaMotion = 2u;        // a motion image is bound; else camera motio
 
 const float kGamma = 1.0;  // variance clip box μ ± γσ (Salvi)
 
-float luma(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 ivec2 clampPixel(ivec2 p) { return clamp(p, ivec2(0), ivec2(pc.size) - 1); }
 
@@ -113,8 +112,8 @@ void main() {
   history = clamp(clipToBox(history, mean, kGamma * sigma), lo, hi);
 
   // Anti-firefly weights 1/(1 + L): the blend of Reinhard-compressed colours, mapped back.
-  float wc = pc.currentWeight / (1.0 + luma(current));
-  float wh = (1.0 - pc.currentWeight) / (1.0 + luma(history));
+  float wc = pc.currentWeight / (1.0 + luminance(current));
+  float wh = (1.0 - pc.currentWeight) / (1.0 + luminance(history));
   vec3 resolved = (current * wc + history * wh) / (wc + wh);
   imageStore(outHistory, p, vec4(resolved, 1.0));
 }

@@ -12,6 +12,9 @@
 
 const float kPi = 3.14159265358979;
 
+// Rec. 709 luminance of linear RGB.
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
 layout(buffer_reference, scalar) readonly buffer Vertices { Vertex v[]; };
 layout(buffer_reference, scalar) readonly buffer Indices { uint i[]; };
 layout(buffer_reference, scalar) readonly buffer Geometries { GeometryRecord g[]; };

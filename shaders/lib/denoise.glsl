@@ -74,6 +74,5 @@ float geometryWeight(Surface p, Surface q, vec2 offset) {
   return wz * wn;
 }
 
-float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 #endif

@@ -10,7 +10,6 @@
 
 const uint kSelectCandidates = 16u;
 
-float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 // Unshadowed importance of light `l` at P with normal N (0 where it cannot contribute).
 float lightImportance(LightRecord l, vec3 p, vec3 n) {
