@@ -14,18 +14,6 @@
 
 namespace rayster::render {
 
-void summarisePasses(const std::vector<std::string>& order, std::map<std::string, std::vector<double>>& times,
-                     RenderOutput& out) {
-  for (const std::string& name : order) {
-    std::vector<double>& v = times[name];
-    std::sort(v.begin(), v.end());
-    PassStats ps{name, v[v.size() / 2], v.front(), v[std::min(v.size() - 1, size_t(std::ceil(0.95 * v.size())) - 1)],
-                 uint32_t(v.size())};
-    out.frameMedianMs += ps.medianMs;
-    out.passes.push_back(ps);
-  }
-}
-
 PathTracer::PathTracer(rhi::Context& ctx, VkDescriptorSetLayout textures)
     : pipeline_(createPathTracePipeline(ctx, textures)) {}
 

@@ -54,9 +54,10 @@ class PathTracer {
   History mean_, moments_;
 };
 
-// Per-pass GPU time statistics (median, min, p95) from each frame's timings, in first-seen order;
-// adds each median to out.frameMedianMs.
-void summarisePasses(const std::vector<std::string>& order, std::map<std::string, std::vector<double>>& times,
-                     RenderOutput& out);
+// Per-pass GPU time statistics (median, min, p95, the samples) from each frame's timings, in
+// first-seen order; adds each median but the raw-rate twins' to out.frameMedianMs. `rays`, when
+// given, counts each pass's launched rays (render/renderer_output.cpp).
+void summarisePasses(const std::vector<std::string>& order, const std::map<std::string, std::vector<double>>& times,
+                     RenderOutput& out, const std::function<RayCount(const std::string&)>& rays = {});
 
 } // namespace rayster::render

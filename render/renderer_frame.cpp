@@ -1,0 +1,188 @@
+// One frame of a run (render/renderer_impl.h): camera and motion, then the G-buffer, the
+// ray-traced effects and their denoisers (or the raster mode's passes), lighting, TAA, tonemap.
+#include <algorithm>
+#include <cmath>
+
+#include "render/jitter.h"
+#include "render/passes/cull.h"
+#include "render/renderer_impl.h"
+
+namespace rayster::render {
+
+namespace {
+
+// A camera that jumps between two frames starts a new shot: its history would ghost the old view.
+// Real motion at any sensible frame rate stays far below these.
+constexpr float kCutMoveFraction = 0.25f;  // of the distance to the target (the scene's scale)
+constexpr float kCutAngleDegrees = 15.0f;  // turn of the view direction
+
+bool isCameraCut(const scene::Camera& before, const scene::Camera& now) {
+  const glm::vec3 dirBefore = before.target - before.position, dirNow = now.target - now.position;
+  const float distance = glm::length(dirBefore);
+  if (glm::length(now.position - before.position) > kCutMoveFraction * distance) return true;
+  const float cosAngle = glm::dot(dirBefore, dirNow) / (distance * glm::length(dirNow));
+  return cosAngle < std::cos(glm::radians(kCutAngleDegrees)) || now.yFov != before.yFov;
+}
+
+} // namespace
+
+FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
+  Run& r = *run;
+  const RenderSettings& s = r.settings;
+  RenderOutput& out = r.out;
+  const uint32_t f = r.frame++;
+  const bool rasterMode = s.mode == Mode::Raster;
+  FrameStats stats;
+  const Clock::time_point frameStart = Clock::now();
+  frameIndex = f;
+  for (const RenderSettings::Move& m : s.moves)  // before the constants: the first edit may move the table
+    if (m.frame == f) {
+      const uint32_t i = uint32_t(findInstance(m.instance));
+      glm::mat4 w = motion.get(scene, i);
+      w[3] = glm::vec4(m.position, 1.0f);
+      motion.set(ctx, gpu, i, w);
+    }
+  const scene::Camera camera = control.camera  ? *control.camera
+                               : s.cameraPath ? cameraOnPath(*r.cam, s, f)
+                                              : *r.cam;
+  // A cut (the first frame of a run, a jump of the camera, or a listed frame) restarts every history.
+  const bool cut = f == 0 || control.cut || isCameraCut(r.prevCamera, camera) ||
+                   std::find(s.cuts.begin(), s.cuts.end(), f) != s.cuts.end();
+  if (cut || !taaHistory.valid) taaFrames = 0;
+  const glm::vec2 jitter = s.taa ? jitterNdc(f, s.width, s.height) : glm::vec2(0.0f);
+  r.prevClipFromWorld = writeConstants(s, camera, jitter, cut ? nullptr : &r.prevClipFromWorld);
+  r.prevCamera = camera;
+  graph::RenderGraph graph(&ctx, &transients);
+  const FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, gpu.bindless->set()};
+  bool moving = s.cameraPath || control.moving;
+  {
+    const bool moved = motion.update(gpu, r.animated, s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0).moved;
+    // Motion vectors of this frame still show last frame's motion after the pose stops.
+    moving = moving || moved || r.movedBefore;
+    r.movedBefore = moved;
+    if (motion.takeTlasRefit(!rasterMode) && !rasterMode)  // the raster mode refits when it leaves
+      graph.addPass("tlas-update", [](graph::PassBuilder& b) { b.sideEffect(); },
+                    [this](graph::PassContext& pc) { gpu.tlas.update(pc.cmd, gpu.tlasInstances); });
+  }
+
+  const GBuffer gb = out.primaryUsed == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
+  FrameImages images;
+  if (rasterMode) {
+    const RasterFrameOutput o = raster.record(graph, in, gb, scene, camera, shadowLights());
+    images = {o.visibility, o.visibility, o.specular, o.specular, o.ao, o.ao, o.indirect, o.indirect, o.hdr};
+  } else {
+    images = recordHybrid(graph, in, gb, camera, f, moving, cut);
+  }
+  graph::ImageHandle hdr = images.hdr;
+  if (s.taa)
+    hdr = resolveTaa(graph, in,
+                     {hdr, gb.depth, taaHistory.previous(graph, "taa-history", f),
+                      taaHistory.next(graph, "taa-history", f), gb.motion, taaFrames});
+  images.hdr = hdr;
+  graph::ImageHandle ldr = tonemap(graph, in, hdr, {std::exp2(s.exposureEv), s.tonemap, s.seed});
+  if (control.present)
+    copyToOutput(graph, ldr);
+  else if (!control.readback)
+    // Every frame's image counts as consumed, as a presented one would be: otherwise the graph
+    // culls tonemapping in all frames but the last (whose readback uses it) and its timings miss them.
+    graph.addPass("output", [&](graph::PassBuilder& b) {
+      b.read(ldr, graph::Use::TransferSrc);
+      b.sideEffect();
+    }, [](graph::PassContext&) {});
+  if (control.readback) addReadbacks(graph, gb, images, ldr);
+
+  VkCommandBuffer cmd = commands.begin();
+  timers.reset(cmd);
+  graph.execute(cmd, &timers);
+  const uint64_t submitted = commands.submit();
+  const double cpuMs = msSince(frameStart);
+  ctx.wait(submitted);
+  const double wallMs = msSince(frameStart);
+  for (History* h : {&surfaceHistory, &shadowHistory, &aoHistory}) h->valid = true;
+  const bool measured = f >= s.warmupFrames || s.warmupFrames >= s.frames;  // never an empty sample
+  double gpuMs = 0;
+  for (auto& t : timers.read()) {
+    if (t.name.rfind("readback", 0) == 0 || t.name.rfind("host-visible", 0) == 0 || t.name.rfind("output", 0) == 0)
+      continue;
+    stats.passes.emplace_back(t.name, t.ms);
+    if (t.name.rfind("raw-", 0) != 0) gpuMs += t.ms;  // raw-rate passes are not part of the frame
+    if (!measured) continue;
+    if (!r.passTimes.count(t.name)) r.passOrder.push_back(t.name);
+    r.passTimes[t.name].push_back(t.ms);
+  }
+  stats.gpuMs = gpuMs;
+  if (measured) {
+    out.frameGpuMs.push_back(gpuMs);
+    out.frameCpuMs.push_back(cpuMs);
+    out.frameWallMs.push_back(wallMs);
+  }
+  ctx.collectGarbage();
+  if (s.taa) {
+    taaHistory.valid = true;
+    ++taaFrames;
+  }
+  stats.primaryUsed = out.primaryUsed;
+  out.visibleDraws = stats.visibleDraws = out.primaryUsed == Primary::Raster ? int64_t(visibleDraws(gpu)) : -1;
+  out.totalDraws = uint32_t(gpu.draws.size());
+  stats.camera = camera;
+  return stats;
+}
+
+FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
+                                         const scene::Camera& camera, uint32_t f, bool moving, bool cut) {
+  const RenderSettings& s = run->settings;
+  FrameImages o;
+  // Every run starts without history, and so does a camera cut; while the camera or an object
+  // moves, the denoisers keep short histories.
+  const TemporalState temporal{moving, f == 0 || cut || !surfaceHistory.valid};
+  const DenoiseInputs dn{pipelines.denoise, nearest.handle(), in.size};
+  const SurfacePair surface{writeSurface(graph, dn, gb.depth, gb.normals, gb.id, surfaceHistory.next(graph, "surface", f),
+                                         camera.zNear, camera.zFar),
+                            surfaceHistory.previous(graph, "surface", f)};
+  const graph::ImageHandle motion = gb.motion;
+
+  o.shadowRaw = traceShadows(graph, in, gb, shadowLights());
+  if (s.rawRays) {
+    if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
+    traceRawPrimary(graph, in, *rawPipelines);
+    traceRawShadows(graph, in, gb, shadowLights(), *rawPipelines);
+  }
+  // Many-light mode traces no shadow layers: lighting reads none, so nothing to denoise.
+  o.shadow = o.shadowRaw;
+  if (shadowLights() > 0)
+    o.shadow = denoiseShadows(graph, dn, surface, motion, o.shadowRaw,
+                              {shadowHistory.previous(graph, "shadow-history", f),
+                               shadowHistory.next(graph, "shadow-history", f)},
+                              temporal)
+                   .denoised;
+  o.specularRaw = traceSpecular(graph, in, gb);
+  o.specular = denoiseRadiance(graph, dn, "reflection", surface, motion, gb.material, o.specularRaw,
+                               specularHistory.colorPair(graph, "specular", f),
+                               specularHistory.momentsPair(graph, "specular", f), temporal)
+                   .denoised;
+  graph::ImageHandle direct;
+  if (manyLights)
+    direct = denoiseRadiance(graph, dn, "direct", surface, motion, gb.material, traceDirect(graph, in, gb),
+                             directHistory.colorPair(graph, "direct", f), directHistory.momentsPair(graph, "direct", f),
+                             temporal)
+                 .denoised;
+  // When an effect is off its raw image is constant and goes to lighting as is.
+  o.aoRaw = traceAo(graph, in, gb);
+  o.ao = o.aoRaw;
+  if (s.ao)
+    o.ao = denoiseShadows(graph, dn, surface, motion, o.aoRaw,
+                          {aoHistory.previous(graph, "ao-history", f), aoHistory.next(graph, "ao-history", f)}, temporal,
+                          "ao")
+               .denoised;
+  o.indirectRaw = traceIndirect(graph, in, gb);
+  o.indirect = o.indirectRaw;
+  if (indirectOn(s))
+    o.indirect = denoiseRadiance(graph, dn, "indirect", surface, motion, gb.material, o.indirectRaw,
+                                 indirectHistory.colorPair(graph, "indirect", f),
+                                 indirectHistory.momentsPair(graph, "indirect", f), temporal)
+                     .denoised;
+  o.hdr = shadeLighting(graph, in, gb, {o.shadow, o.specular, o.ao, o.indirect, direct});
+  return o;
+}
+
+} // namespace rayster::render

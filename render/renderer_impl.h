@@ -1,0 +1,156 @@
+#pragma once
+// The renderer's private state (render/renderer.h's Renderer::Impl), shared by its three sources:
+//   renderer.cpp         runs: settings, cameras, frame constants, histories, `auto` primaries
+//   renderer_frame.cpp   one frame: the hybrid (or raster) passes recorded into a render graph
+//   renderer_output.cpp  what leaves a run: AOV stages, readback, per-pass statistics
+#include <chrono>
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "graph/graph.h"
+#include "render/gpu_scene.h"
+#include "render/history.h"
+#include "render/instance_motion.h"
+#include "render/passes/denoise.h"
+#include "render/passes/passes.h"
+#include "render/path_tracer.h"
+#include "render/pipelines.h"
+#include "render/raster_frame.h"
+#include "render/renderer.h"
+#include "rhi/commands.h"
+#include "rhi/context.h"
+
+namespace rayster::render {
+
+using Clock = std::chrono::steady_clock;
+inline double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Timestamp regions per frame: the hybrid frame has ~35 passes with every denoiser on (each à-trous
+// step is its own pass); a full pool silently drops the last passes' times.
+inline constexpr uint32_t kMaxTimedPasses = 96;
+
+// What one frame's passes produced, for lighting, TAA and the AOVs: each effect's raw and
+// denoised image (the same handle when the effect is off or the raster mode made it), the HDR
+// image before TAA.
+struct FrameImages {
+  graph::ImageHandle shadowRaw, shadow, specularRaw, specular, aoRaw, ao, indirectRaw, indirect, hdr;
+};
+
+struct Renderer::Impl {
+  rhi::Context& ctx;
+  const scene::Scene& scene;
+  GpuScene gpu;
+  Pipelines pipelines;
+  rhi::Sampler nearest, linear;
+  rhi::Buffer constants;
+  graph::TransientPool transients;
+  rhi::CommandList commands;
+  rhi::TimestampPool timers;
+  // Temporal state of the denoisers: the surface (disocclusion tests), shadow and AO means, SVGF
+  // colour and moments of the reflections, the indirect light and the many-light direct light;
+  // and TAA's resolved colour.
+  History surfaceHistory, shadowHistory, aoHistory, taaHistory;
+  struct SvgfHistory {
+    History color, moments;
+    // Full size only while the signal exists (a 1×1 stand-in otherwise, never read).
+    void ensure(rhi::Context& ctx, VkExtent2D size, bool used, const std::string& name) {
+      const VkExtent2D s = used ? size : VkExtent2D{1, 1};
+      color.ensure(ctx, svgfColorHistoryDesc(s), name + "-history");
+      moments.ensure(ctx, svgfMomentsHistoryDesc(s), name + "-moments");
+    }
+    HistoryPair colorPair(graph::RenderGraph& g, const std::string& name, uint32_t f) {
+      return {color.previous(g, name + "-history", f), color.next(g, name + "-history", f)};
+    }
+    HistoryPair momentsPair(graph::RenderGraph& g, const std::string& name, uint32_t f) {
+      return {moments.previous(g, name + "-moments", f), moments.next(g, name + "-moments", f)};
+    }
+  } specularHistory, indirectHistory, directHistory;
+  std::optional<RawRayPipelines> rawPipelines;  // created on the first render with rawRays
+  RasterFrame raster;  // the raster mode's passes (render/raster_frame.h)
+  uint32_t frameIndex = 0;
+  uint32_t taaFrames = 0;  // frames in the TAA history since its last reset
+  InstanceMotion motion;  // animation and edits (render/instance_motion.h)
+  bool manyLights = false;  // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
+  std::unique_ptr<PathTracer> pathTracer;  // created by the first path-traced render
+
+  // State of one run (render() or a viewer session): what beginRun sets up and each frame advances.
+  struct Run {
+    RenderSettings settings;
+    const scene::Camera* cam = nullptr;
+    RenderOutput out;
+    uint32_t frame = 0;
+    bool animated = false, movedBefore = false;
+    glm::mat4 prevClipFromWorld{1.0f};
+    scene::Camera prevCamera;
+    rhi::Buffer ldrReadback, hdrReadback;
+    graph::ResourceState ldrState, hdrState;
+    struct AovReadback {
+      std::string name;
+      VkFormat format;
+      uint32_t layer;
+      rhi::Buffer buffer;
+    };
+    std::vector<AovReadback> aovReadback;
+    std::deque<graph::ResourceState> aovStates;  // stable addresses for the graph
+    std::map<std::string, std::vector<double>> passTimes;
+    std::vector<std::string> passOrder;
+  };
+  std::optional<Run> run;
+  // The presentable copy of the last frame's LDR image (FrameControl::present).
+  rhi::Image output;
+  graph::ResourceState outputState;
+
+  Impl(rhi::Context& c, const scene::Scene& s, GpuScene g);
+
+  // --- renderer.cpp: settings, cameras, constants, histories
+  bool indirectOn(const RenderSettings& s) const { return s.indirect.value_or(scene.indirectByDefault); }
+  float aoRadius(const RenderSettings& s) const;
+  int32_t findInstance(const std::string& name) const;
+  uint32_t shadowLights() const { return manyLights ? 0u : std::min(gpu.lightCount, gpu::kMaxShadowLights); }
+  // Rays of the hybrid's reflection/refraction loop after the G-buffer surface (RenderSettings::maxDepth).
+  static uint32_t specularBounces(const RenderSettings& s) {
+    return std::clamp(s.maxDepth > 1 ? s.maxDepth - 1 : 1u, 1u, gpu::kMaxSpecularBounces);
+  }
+  // Writes the frame's constants; `jitter` is the NDC offset of the primaries, `prevClipFromWorld`
+  // the previous frame's unjittered matrix (none: the first frame of a shot, so no motion).
+  // Returns this frame's unjittered clipFromWorld.
+  glm::mat4 writeConstants(const RenderSettings& s, const scene::Camera& cam, glm::vec2 jitter,
+                           const glm::mat4* prevClipFromWorld);
+  void ensureHistory(const RenderSettings& s);
+  // Times one G-buffer producer alone: a warm-up frame, then a measured one.
+  double timeProducer(const RenderSettings& s, Primary p);
+  // The camera at `frame` along the scene's path: linear between keys, clamped at the ends.
+  scene::Camera cameraOnPath(const scene::Camera& base, const RenderSettings& s, uint32_t frame) const;
+  Result<const scene::Camera*> findCamera(const RenderSettings& s) const;
+  RenderOutput::SceneStats sceneStats() const;
+  // The reference (render/path_tracer.h): the scene's rest pose seen from the (static) camera.
+  Result<RenderOutput> renderPathTraced(const RenderSettings& s);
+  Status beginRun(const RenderSettings& s);
+  Result<RenderOutput> render(const RenderSettings& s);
+
+  // --- renderer_frame.cpp: one frame
+  FrameStats renderFrame(const FrameControl& control);
+  // The ray-traced effects and their denoisers, then lighting.
+  FrameImages recordHybrid(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
+                           const scene::Camera& camera, uint32_t f, bool moving, bool cut);
+
+  // --- renderer_output.cpp: AOVs, readback, statistics
+  // Readback of the LDR and HDR images and of the run's AOVs (RenderSettings::aovs) in this frame.
+  void addReadbacks(graph::RenderGraph& graph, const GBuffer& gb, const FrameImages& images, graph::ImageHandle ldr);
+  RenderOutput endRun();
+  // The images of the last frame rendered with readback, and the scene's statistics.
+  void readImages(RenderOutput& out);
+  // Copies the tonemapped image into `output` and leaves it ready as a transfer source, so the
+  // caller's next submission can blit it (the next frame's copy waits for that read).
+  void copyToOutput(graph::RenderGraph& graph, graph::ImageHandle ldr);
+};
+
+} // namespace rayster::render
