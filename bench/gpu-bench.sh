@@ -9,8 +9,10 @@ OUT=${OUT:-bench/out}
 PLAN=${PLAN:-bench/plans/h100.json}
 mkdir -p "$OUT" /tmp/rayster-bench
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv,noheader 2>/dev/null || true
-python3 bench/make_large_mesh.py /tmp/rayster-bench/mesh-1m.glb 1000000 >/dev/null || exit 1
-python3 bench/make_large_mesh.py /tmp/rayster-bench/mesh-4m.glb 4000000 >/dev/null || exit 1
+for n in 1 4; do  # the triangle sweep's meshes, once per machine
+  f=/tmp/rayster-bench/mesh-${n}m.glb
+  [ -f "$f" ] || python3 bench/make_large_mesh.py "$f" ${n}000000 >/dev/null || exit 1
+done
 $R bench --plan "$PLAN" --json "$OUT/bench.json" 2>&1 | grep -vE '^rayster: (loaded|wrote [^,]*\.png)'
 status=${PIPESTATUS[0]}
 ls -l "$OUT"
