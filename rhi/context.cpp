@@ -70,6 +70,10 @@ DeviceInfo describe(VkPhysicalDevice pd) {
   info.apiVersion = props.properties.apiVersion;
   info.driverName = driver.driverName;
   info.driverInfo = driver.driverInfo;
+  info.cacheKey.vendorId = props.properties.vendorID;
+  info.cacheKey.deviceId = props.properties.deviceID;
+  std::copy(std::begin(props.properties.pipelineCacheUUID), std::end(props.properties.pipelineCacheUUID),
+            info.cacheKey.uuid.begin());
 
   VkPhysicalDeviceMemoryProperties mem;
   vkGetPhysicalDeviceMemoryProperties(pd, &mem);
@@ -335,6 +339,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
   sci.pNext = &tci;
   VK_CHECK(vkCreateSemaphore(ctx->device_, &sci, nullptr, &ctx->timeline_));
   ctx->memory_ = std::make_unique<MemoryAllocator>(*ctx);
+  ctx->pipelineCache_ = std::make_unique<PipelineCache>(ctx->device_, ctx->info_.cacheKey);
   log::debug("device: {} ({}, {})", ctx->info_.name, ctx->info_.typeName(), ctx->info_.driverInfo);
   return ctx;
 }
@@ -342,6 +347,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
 Context::~Context() {
   if (device_) {
     vkDeviceWaitIdle(device_);
+    if (pipelineCache_) pipelineCache_->save();
+    pipelineCache_.reset();
     for (auto& [value, destroy] : garbage_) destroy();
     garbage_.clear();
     memory_.reset();

@@ -11,6 +11,7 @@
 #include <volk.h>
 
 #include "core/error.h"
+#include "rhi/pipeline_cache.h"
 
 namespace rayster::rhi {
 
@@ -40,6 +41,7 @@ struct DeviceInfo {
   uint64_t deviceLocalBytes = 0;
   Capabilities caps;
   std::string unsuitableReason; // empty when Rayster can run on it at all
+  PipelineCacheKey cacheKey;     // vendor, device and pipelineCacheUUID (rhi/pipeline_cache.h)
   const char* typeName() const;
 };
 
@@ -73,6 +75,10 @@ class Context {
   const DeviceInfo& info() const { return info_; }
   const Capabilities& caps() const { return info_.caps; }
   MemoryAllocator& memory() { return *memory_; }
+  // Every pipeline is created through this cache; it is written back to disk when the context
+  // is destroyed (rhi/pipeline_cache.h).
+  VkPipelineCache pipelineCache() const { return pipelineCache_ ? pipelineCache_->handle() : VK_NULL_HANDLE; }
+  const PipelineCache* pipelineCacheState() const { return pipelineCache_.get(); }
   bool validationEnabled() const { return validation_; }
   // Validation messages of error severity seen so far; a test run fails if this is not 0.
   uint32_t validationErrors() const;
@@ -109,6 +115,7 @@ class Context {
   uint64_t submitted_ = 0;
   std::vector<std::pair<uint64_t, std::function<void()>>> garbage_;
   std::unique_ptr<MemoryAllocator> memory_;
+  std::unique_ptr<PipelineCache> pipelineCache_;
 };
 
 } // namespace rayster::rhi

@@ -76,7 +76,7 @@ Pipeline createComputePipeline(Context& ctx, std::string_view shader, std::span<
   ci.stage.pName = "main";
   ci.layout = p.layout_;
   VkPipeline handle = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &handle));
+  VK_CHECK(vkCreateComputePipelines(ctx.device(), ctx.pipelineCache(), 1, &ci, nullptr, &handle));
   vkDestroyShaderModule(ctx.device(), module, nullptr);
   PipelineBuilder::setHandle(p, handle, VK_PIPELINE_BIND_POINT_COMPUTE);
   ctx.setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(handle), std::string(shader).c_str());
@@ -144,7 +144,7 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
   ci.pDynamicState = &dy;
   ci.layout = p.layout_;
   VkPipeline handle = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &handle));
+  VK_CHECK(vkCreateGraphicsPipelines(ctx.device(), ctx.pipelineCache(), 1, &ci, nullptr, &handle));
   vkDestroyShaderModule(ctx.device(), vs, nullptr);
   vkDestroyShaderModule(ctx.device(), fs, nullptr);
   PipelineBuilder::setHandle(p, handle, VK_PIPELINE_BIND_POINT_GRAPHICS);

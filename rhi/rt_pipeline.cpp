@@ -72,7 +72,7 @@ RayTracingPipeline::RayTracingPipeline(Context& ctx, const RayTracingPipelineDes
   ci.maxPipelineRayRecursionDepth = d.maxRecursionDepth;
   ci.layout = layout_;
   VkPipeline handle = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, VK_NULL_HANDLE, 1, &ci, nullptr, &handle));
+  VK_CHECK(vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, ctx.pipelineCache(), 1, &ci, nullptr, &handle));
   for (auto& s : stages) vkDestroyShaderModule(ctx.device(), s.module, nullptr);
   PipelineBuilder::setHandle(*this, handle, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR);
   ctx.setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(handle), std::string(d.raygen).c_str());
