@@ -19,7 +19,7 @@ void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(p), pc.size))) return;
   const int layers = int(pc.layers);
-  Surface sp = decodeSurface(texelFetch(surfaceTex, p, 0));
+  Surface sp = loadSurface(surfaceTex, p, pc.size);
   float sum[kMaxShadowLights], weights[kMaxShadowLights], centre[kMaxShadowLights], scale[kMaxShadowLights];
   [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l) {
     if (l >= layers) break;
@@ -34,7 +34,7 @@ void main() {
       for (int i = -2; i <= 2; ++i) {
         ivec2 q = p + int(pc.step) * ivec2(i, j);
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(pc.size)))) continue;
-        Surface sq = decodeSurface(texelFetch(surfaceTex, q, 0));
+        Surface sq = decodeSurface(texelFetch(surfaceTex, q, 0).xy);
         if (isSky(sq)) continue;
         const bool isCentre = i == 0 && j == 0;
         float w = b3(i) * b3(j) * (isCentre ? 1.0 : geometryWeight(sp, sq, vec2(int(pc.step) * ivec2(i, j))));

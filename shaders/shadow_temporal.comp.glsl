@@ -1,4 +1,5 @@
 #version 460
+#extension GL_EXT_control_flow_attributes : require
 #include "lib/common.glsl"
 #include "lib/denoise.glsl"
 
@@ -7,7 +8,8 @@
 // means, layer L the history length n (fp32, so the static running mean stays exact).
 //   α = max(1/(1+n), αmin); static: αmin = 0, no clamp; moving: αmin = 0.2 and the history is
 //   clamped to the 3×3 min/max of the new visibility.
-// Also writes the variance of each layer for the à-trous value weight (shared/denoise.h).
+// Also writes the variance of each layer for the à-trous value weight (shared/denoise.h). The
+// per-layer loop runs to the constant kMaxShadowLights, unrolled.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform usampler2D surfaceTex;
 layout(set = 0, binding = 1) uniform usampler2D prevSurfaceTex;
@@ -35,7 +37,7 @@ void main() {
   if (any(greaterThanEqual(uvec2(p), pc.size))) return;
   const bool moving = (pc.flags & kDenoiseMoving) != 0u;
   const int layers = int(pc.layers);
-  Surface cur = decodeSurface(texelFetch(surfaceTex, p, 0));
+  Surface cur = loadSurface(surfaceTex, p, pc.size);
 
   Reprojection r;
   r.sum = 0.0;
@@ -59,11 +61,12 @@ void main() {
     ivec2 o = ivec2(k % 3 - 1, k / 3 - 1), q = p + o;
     spatialWeight[k] = 0.0;
     if (!spatial || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(pc.size)))) continue;
-    Surface sq = decodeSurface(texelFetch(surfaceTex, q, 0));
+    Surface sq = decodeSurface(texelFetch(surfaceTex, q, 0).xy);
     if (!isSky(sq)) spatialWeight[k] = k == 4 ? 1.0 : geometryWeight(cur, sq, vec2(o));
   }
 
-  for (int layer = 0; layer < layers; ++layer) {
+  [[unroll]] for (int layer = 0; layer < int(kMaxShadowLights); ++layer) {
+    if (layer >= layers) break;
     float fresh = texelFetch(rawTex, ivec3(p, layer), 0).r;
     float value = fresh;
     if (history) {

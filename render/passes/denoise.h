@@ -8,13 +8,13 @@
 // Parameters and push constants: shaders/shared/denoise.h. Pass names carry the à-trous step
 // ("shadow-atrous-2"), so per-pass timings keep the iterations apart.
 //
-// Cost (expected on an H100 at 1080p, not measured yet): every pass is 8×8 workgroups of
-// texelFetch from L1/L2-resident neighbourhoods. Shadows: temporal ≈ 30–40 µs (reprojection once
-// per pixel, all lights in one invocation), each à-trous ≈ 30–50 µs (geometry weights once per
-// tap for all lights) → ≈ 0.15–0.2 ms for one light, + ~20 % per extra light. SVGF: temporal
-// ≈ 40 µs, variance ≈ 20 µs (7×7 only where n < 4), 5 à-trous ≈ 35–50 µs each → ≈ 0.25–0.3 ms,
-// above the 0.2 ms budget until the step-1 iteration and the 3×3 variance blur read a shared-memory
-// tile and the surface shrinks to 8 B/px.
+// Cost: every pass is 8×8 workgroups of texelFetch from L1/L2-resident neighbourhoods, so each
+// is bound by its fetches per pixel; the guide every tap reads is 8 B (an RG32UI surface texel,
+// one full-rate fetch). Shadows: temporal (reprojection once per pixel, all lights in one
+// invocation) + 3 à-trous (geometry weights once per tap for all lights) = 4 dispatches. SVGF:
+// temporal with the variance estimate + 5 à-trous = 6 dispatches (7 before the variance pass was
+// folded into the temporal one). Measured on an H200 at 1080p before these changes (16 B guide,
+// separate variance pass): 0.79 ms a shadow denoiser, 0.73–0.97 ms an SVGF.
 #include <string>
 
 #include <volk.h>
@@ -24,17 +24,19 @@
 
 namespace rayster::render {
 
-// Surface texel: linear view depth (float bits; 0 for sky), its screen-space slope, oct shading
-// normal (packSnorm2x16), id (gpu::kBackgroundId for sky). 16 B/px; see shaders/lib/denoise.glsl.
-inline constexpr VkFormat kSurfaceFormat = VK_FORMAT_R32G32B32A32_UINT;
+// Surface texel: linear view depth (float bits; 0 for sky), oct shading normal (2 × snorm10) and
+// the id's low 12 bits. 8 B/px; the depth slope is recomputed from the neighbours by its readers.
+// See shaders/lib/denoise.glsl for the precision each field needs.
+inline constexpr VkFormat kSurfaceFormat = VK_FORMAT_R32G32_UINT;
 // Shadow history: layers 0..L−1 the running mean per light, layer L the history length n. fp32:
 // the static running mean is exact (1/(1+n) steps far above the ulp; 16 bits freeze it, §9).
 inline constexpr VkFormat kShadowHistoryFormat = VK_FORMAT_R32_SFLOAT;
 inline constexpr VkFormat kShadowDenoisedFormat = VK_FORMAT_R16_SFLOAT;  // per light, for lighting
-// SVGF: colour history (fp32: the static exact running mean), moments history (μ1, μ2, n, -),
-// working images rgb colour + a variance.
+// SVGF: colour history (rgb the running mean, a the history length n; fp32: the static exact
+// running mean, and n exact up to its cap), moments history (μ1, μ2; fp32: μ2 − μ1² cancels, and
+// μ2 of bright pixels overflows half floats), working images rgb colour + a variance.
 inline constexpr VkFormat kSvgfColorHistoryFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-inline constexpr VkFormat kSvgfMomentsHistoryFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+inline constexpr VkFormat kSvgfMomentsHistoryFormat = VK_FORMAT_R32G32_SFLOAT;
 inline constexpr VkFormat kSvgfWorkingFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
 // Image descriptions for the caller's History objects.
@@ -46,7 +48,7 @@ rhi::ImageDesc svgfMomentsHistoryDesc(VkExtent2D size);
 struct DenoisePipelines {
   rhi::Pipeline surface;
   rhi::Pipeline shadowTemporal, shadowAtrous;
-  rhi::Pipeline svgfTemporal, svgfVariance, svgfAtrous, svgfAtrousHistory;
+  rhi::Pipeline svgfTemporal, svgfAtrous, svgfAtrousHistory;
   static DenoisePipelines create(rhi::Context& ctx);
 };
 
@@ -102,20 +104,20 @@ graph::ImageHandle shadowAtrous(graph::RenderGraph& graph, const DenoiseInputs& 
 // D. SVGF for a radiance signal (RGBA16F). name: prefix of its passes and images ("reflection").
 // material: the G-buffer material image (.r perceptual roughness; ≤ 0.05 stays sharp).
 struct RadianceDenoised {
-  graph::ImageHandle temporal;  // = color.next after the temporal pass (the running mean when static)
-  graph::ImageHandle moments;   // = moments.next (μ1, μ2, n)
-  graph::ImageHandle variance;  // working image after the variance estimate (rgb colour, a variance)
+  graph::ImageHandle temporal;  // = color.next after the temporal pass (rgb the running mean when static, a n)
+  graph::ImageHandle moments;   // = moments.next (μ1, μ2)
+  graph::ImageHandle variance;  // working image after the temporal pass (rgb colour, a variance); à-trous
+                                // iterations 2 and 4 reuse it, so it holds iteration 4's output at the end
   graph::ImageHandle denoised;  // RGBA16F, rgb denoised radiance (a: its variance)
 };
 RadianceDenoised denoiseRadiance(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
                                  SurfacePair surface, graph::ImageHandle motion, graph::ImageHandle material,
                                  graph::ImageHandle raw, HistoryPair color, HistoryPair moments, TemporalState state);
-void svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name, SurfacePair surface,
-                  graph::ImageHandle motion, graph::ImageHandle raw, HistoryPair color, HistoryPair moments,
-                  TemporalState state);
-graph::ImageHandle svgfVariance(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
-                                graph::ImageHandle surface, graph::ImageHandle color, graph::ImageHandle moments,
-                                TemporalState state);
+// The temporal pass with the variance estimate: writes color.next, moments.next and `out` (an
+// image from createSvgfImage: rgb colour, a variance; returned).
+graph::ImageHandle svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
+                                SurfacePair surface, graph::ImageHandle motion, graph::ImageHandle raw,
+                                HistoryPair color, HistoryPair moments, graph::ImageHandle out, TemporalState state);
 // One iteration from `input` into `output` (returned; both from createSvgfImage, never the same);
 // a valid `history` receives the output too (iteration 1 while moving).
 graph::ImageHandle createSvgfImage(graph::RenderGraph& graph, VkExtent2D size, const std::string& name);

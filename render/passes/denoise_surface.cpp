@@ -33,11 +33,9 @@ DenoisePipelines DenoisePipelines::create(rhi::Context& ctx) {
   p.shadowTemporal = rhi::createComputePipeline(ctx, "shadow_temporal.comp", shadowTemporal, sizeof(gpu::TemporalPush));
   const rhi::Binding shadowAtrous[] = {{0, kSampled}, {1, kSampled}, {2, kStorage}, {3, kSampled}};
   p.shadowAtrous = rhi::createComputePipeline(ctx, "shadow_atrous.comp", shadowAtrous, sizeof(gpu::AtrousPush));
-  const rhi::Binding svgfTemporal[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled},
-                                       {4, kSampled}, {5, kSampled}, {6, kStorage}, {7, kStorage}};
+  const rhi::Binding svgfTemporal[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled},
+                                       {5, kSampled}, {6, kStorage}, {7, kStorage}, {8, kStorage}};
   p.svgfTemporal = rhi::createComputePipeline(ctx, "svgf_temporal.comp", svgfTemporal, sizeof(gpu::TemporalPush));
-  const rhi::Binding svgfVariance[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorage}};
-  p.svgfVariance = rhi::createComputePipeline(ctx, "svgf_variance.comp", svgfVariance, sizeof(gpu::TemporalPush));
   const rhi::Binding svgfAtrous[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorage}, {4, kStorage}};
   p.svgfAtrous = rhi::createComputePipeline(ctx, "svgf_atrous.comp", std::span(svgfAtrous, 4), sizeof(gpu::AtrousPush));
   p.svgfAtrousHistory =

@@ -1,5 +1,6 @@
 // Pass 5: SVGF for radiance signals (TECHNIQUES.md §12): temporal integration of colour and
-// luminance moments, variance estimate, 5 edge-aware à-trous iterations at steps 1 .. 16.
+// luminance moments with the variance estimate in the same pass, 5 edge-aware à-trous iterations
+// at steps 1 .. 16: 6 dispatches.
 #include "render/passes/denoise.h"
 #include "shaders/shared/denoise.h"
 
@@ -14,16 +15,21 @@ void dispatch(VkCommandBuffer cmd, const rhi::Pipeline& pipe, VkExtent2D size, c
 }
 }  // namespace
 
-void svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name, SurfacePair surface,
-                  graph::ImageHandle motion, graph::ImageHandle raw, HistoryPair color, HistoryPair moments,
-                  TemporalState state) {
+graph::ImageHandle createSvgfImage(graph::RenderGraph& graph, VkExtent2D size, const std::string& name) {
+  return graph.createImage(name,
+                           {kSvgfWorkingFormat, size.width, size.height, 1,
+                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+}
+
+graph::ImageHandle svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
+                                SurfacePair surface, graph::ImageHandle motion, graph::ImageHandle raw,
+                                HistoryPair color, HistoryPair moments, graph::ImageHandle out, TemporalState state) {
   graph.addPass(
       name + "-temporal",
       [&](graph::PassBuilder& b) {
         for (auto h : {surface.current, surface.previous, motion, raw, color.previous, moments.previous})
           b.read(h, graph::Use::SampledCompute);
-        b.write(color.next, graph::Use::StorageWriteCompute);
-        b.write(moments.next, graph::Use::StorageWriteCompute);
+        for (auto h : {color.next, moments.next, out}) b.write(h, graph::Use::StorageWriteCompute);
       },
       [=](graph::PassContext& pc) {
         const rhi::Pipeline& pipe = in.pipelines.svgfTemporal;
@@ -37,36 +43,7 @@ void svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, const std:
             .sampledImage(5, pc.image(moments.previous).view(), in.nearest)
             .storageImage(6, pc.image(color.next).view())
             .storageImage(7, pc.image(moments.next).view())
-            .push(pc.cmd, pipe);
-        const gpu::TemporalPush push{{in.size.width, in.size.height}, 1, temporalFlags(state)};
-        dispatch(pc.cmd, pipe, in.size, &push, sizeof(push));
-      });
-}
-
-graph::ImageHandle createSvgfImage(graph::RenderGraph& graph, VkExtent2D size, const std::string& name) {
-  return graph.createImage(name,
-                           {kSvgfWorkingFormat, size.width, size.height, 1,
-                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
-}
-
-graph::ImageHandle svgfVariance(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
-                                graph::ImageHandle surface, graph::ImageHandle color, graph::ImageHandle moments,
-                                TemporalState state) {
-  graph::ImageHandle out = createSvgfImage(graph, in.size, name + "-variance");
-  graph.addPass(
-      name + "-variance",
-      [&](graph::PassBuilder& b) {
-        for (auto h : {surface, color, moments}) b.read(h, graph::Use::SampledCompute);
-        b.write(out, graph::Use::StorageWriteCompute);
-      },
-      [=](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = in.pipelines.svgfVariance;
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter()
-            .sampledImage(0, pc.image(surface).view(), in.nearest)
-            .sampledImage(1, pc.image(color).view(), in.nearest)
-            .sampledImage(2, pc.image(moments).view(), in.nearest)
-            .storageImage(3, pc.image(out).view())
+            .storageImage(8, pc.image(out).view())
             .push(pc.cmd, pipe);
         const gpu::TemporalPush push{{in.size.width, in.size.height}, 1, temporalFlags(state)};
         dispatch(pc.cmd, pipe, in.size, &push, sizeof(push));
@@ -82,7 +59,7 @@ graph::ImageHandle svgfAtrous(graph::RenderGraph& graph, const DenoiseInputs& in
       [&](graph::PassBuilder& b) {
         for (auto h : {surface, material, input}) b.read(h, graph::Use::SampledCompute);
         b.write(output, graph::Use::StorageWriteCompute);
-        if (history.valid()) b.write(history, graph::Use::StorageWriteCompute);
+        if (history.valid()) b.write(history, graph::Use::StorageReadWriteCompute);  // keeps its a (n)
       },
       [=](graph::PassContext& pc) {
         const rhi::Pipeline& pipe = history.valid() ? in.pipelines.svgfAtrousHistory : in.pipelines.svgfAtrous;
@@ -104,12 +81,13 @@ RadianceDenoised denoiseRadiance(graph::RenderGraph& graph, const DenoiseInputs&
                                  SurfacePair surface, graph::ImageHandle motion, graph::ImageHandle material,
                                  graph::ImageHandle raw, HistoryPair color, HistoryPair moments, TemporalState state) {
   RadianceDenoised out;
-  svgfTemporal(graph, in, name, surface, motion, raw, color, moments, state);
-  out.temporal = color.next;
-  out.moments = moments.next;
-  out.variance = svgfVariance(graph, in, name, surface.current, color.next, moments.next, state);
+  // Two working images: the temporal pass writes the first, the iterations ping-pong between them.
   const graph::ImageHandle work[2] = {createSvgfImage(graph, in.size, name + "-atrous"),
                                       createSvgfImage(graph, in.size, name + "-denoised")};
+  static_assert(gpu::kSvgfAtrousIterations % 2 == 1, "the last iteration must land in work[1]");
+  out.variance = svgfTemporal(graph, in, name, surface, motion, raw, color, moments, work[0], state);
+  out.temporal = color.next;
+  out.moments = moments.next;
   graph::ImageHandle input = out.variance;
   for (uint32_t i = 0; i < gpu::kSvgfAtrousIterations; ++i) {
     const uint32_t left = gpu::kSvgfAtrousIterations - 1 - i;  // the last one lands in work[1]

@@ -7,14 +7,15 @@
 // w_z (σz = 1), w_n (σn = 128) and w_l = exp(−|l_p − l_q| / (σl·sqrt(g3×3(var_p)) + ε)) (σl = 4).
 // Colour Σ h·w·c / Σ h·w; variance Σ (h·w)²·var / (Σ h·w)², passed on in .a. Mirrors and glass
 // (roughness ≤ kSharpRoughness) are passed through and never used as neighbours of rougher pixels.
-// With SVGF_WRITE_HISTORY (iteration 1 while moving) the output also becomes the colour history.
+// With SVGF_WRITE_HISTORY (iteration 1 while moving) the output also becomes the colour history
+// (rgb; its a, the history length n written by the temporal pass, is kept).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform usampler2D surfaceTex;
 layout(set = 0, binding = 1) uniform sampler2D materialTex;  // .r perceptual roughness
 layout(set = 0, binding = 2) uniform sampler2D inputTex;     // rgb colour, a variance
 layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D outColorVariance;
 #ifdef SVGF_WRITE_HISTORY
-layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D outHistory;
+layout(set = 0, binding = 4, rgba32f) uniform image2D outHistory;
 #endif
 layout(push_constant, scalar) uniform Push { AtrousPush pc; };
 
@@ -39,7 +40,7 @@ void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(p), pc.size))) return;
   vec4 centre = texelFetch(inputTex, p, 0);
-  Surface sp = decodeSurface(texelFetch(surfaceTex, p, 0));
+  Surface sp = loadSurface(surfaceTex, p, pc.size);
   vec4 result = centre;
   if (!isSky(sp) && !sharp(p)) {
     float lp = luminance(centre.rgb);
@@ -53,7 +54,7 @@ void main() {
         vec4 c = texelFetch(inputTex, q, 0);
         float w = b3(i) * b3(j);
         if (i != 0 || j != 0) {
-          Surface sq = decodeSurface(texelFetch(surfaceTex, q, 0));
+          Surface sq = decodeSurface(texelFetch(surfaceTex, q, 0).xy);
           if (isSky(sq) || sharp(q)) continue;
           w *= geometryWeight(sp, sq, vec2(int(pc.step) * ivec2(i, j))) * exp(-abs(lp - luminance(c.rgb)) * lumScale);
         }
@@ -65,6 +66,6 @@ void main() {
   }
   imageStore(outColorVariance, p, result);
 #ifdef SVGF_WRITE_HISTORY
-  imageStore(outHistory, p, vec4(result.rgb, 1.0));
+  imageStore(outHistory, p, vec4(result.rgb, imageLoad(outHistory, p).a));
 #endif
 }

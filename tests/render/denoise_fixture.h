@@ -176,6 +176,8 @@ class Denoise : public ::testing::Test {
         case VK_FORMAT_R8G8B8A8_UNORM:
           return 4;
         case VK_FORMAT_R16G16B16A16_SFLOAT:
+        case VK_FORMAT_R32G32_SFLOAT:
+        case VK_FORMAT_R32G32_UINT:
           return 8;
         default:
           return 16;
@@ -199,10 +201,7 @@ class Denoise : public ::testing::Test {
 // ---- decoding downloads ----
 
 inline std::vector<test::ref::Surf> surfacesOf(const std::vector<uint8_t>& bytes) {
-  std::vector<test::ref::Surf> s(kPixels);
-  for (size_t i = 0; i < kPixels; ++i)
-    s[i] = test::ref::decodeSurface(reinterpret_cast<const uint32_t*>(bytes.data()) + i * 4);
-  return s;
+  return test::ref::decodeSurfaces(reinterpret_cast<const uint32_t*>(bytes.data()), kW, kH);
 }
 inline std::vector<float> floatsOf(const std::vector<uint8_t>& bytes) {
   std::vector<float> v(bytes.size() / 4);
@@ -222,6 +221,11 @@ inline std::vector<vec4> vec4sOf(const std::vector<float>& f) {
 inline std::vector<float> flatten(const std::vector<vec4>& v) {
   std::vector<float> f;
   for (const vec4& x : v) f.insert(f.end(), {x.x, x.y, x.z, x.w});
+  return f;
+}
+inline std::vector<float> flatten(const std::vector<vec2>& v) {
+  std::vector<float> f;
+  for (const vec2& x : v) f.insert(f.end(), {x.x, x.y});
   return f;
 }
 

@@ -39,13 +39,40 @@ inline vec3 octDecode(vec2 e) {
   return glm::normalize(n);
 }
 inline float snorm16(int16_t v) { return std::clamp(v / 32767.0f, -1.0f, 1.0f); }
+inline float snorm10(int v) { return std::clamp(v / 511.0f, -1.0f, 1.0f); }
+inline int toSnorm10(float v) { return int(std::lround(std::clamp(v, -1.0f, 1.0f) * 511.0f)); }
+inline int signExtend10(uint32_t v) { return int(v & 0x3FFu) - (v & 0x200u ? 1024 : 0); }
 
-inline Surf decodeSurface(const uint32_t* t) {
+// The surface texel (RG32UI): z float bits (0: sky); oct normal 2 × snorm10 | id's low 12 bits.
+inline Surf decodeTexel(const uint32_t* t) {
   Surf s;
   s.z = std::bit_cast<float>(t[0]);
-  s.zGrad = std::bit_cast<float>(t[1]);
-  s.n = octDecode(vec2(snorm16(int16_t(t[2] & 0xFFFFu)), snorm16(int16_t(t[2] >> 16))));
-  s.id = t[3];
+  s.n = octDecode(vec2(snorm10(signExtend10(t[1])), snorm10(signExtend10(t[1] >> 10))));
+  s.id = t[0] == 0 ? gpu::kBackgroundId : t[1] >> 20;
+  return s;
+}
+// The depth slope |dz/dx| + |dz/dy| by one-sided differences, the smaller of each pair (so a
+// silhouette beside the pixel does not pass for a steep slope); 0 where no neighbour is geometry.
+inline void addSlopes(std::vector<Surf>& s, int w, int h) {
+  auto on = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && !s[size_t(y) * w + x].sky(); };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      Surf& c = s[size_t(y) * w + x];
+      if (c.sky()) continue;
+      auto slope = [&](int dx, int dy) {
+        float best = 1e30f;
+        if (on(x + dx, y + dy)) best = std::min(best, std::abs(s[size_t(y + dy) * w + x + dx].z - c.z));
+        if (on(x - dx, y - dy)) best = std::min(best, std::abs(s[size_t(y - dy) * w + x - dx].z - c.z));
+        return best < 1e30f ? best : 0.0f;
+      };
+      c.zGrad = slope(1, 0) + slope(0, 1);
+    }
+}
+// A whole surface image (2 words per texel), with the slopes the shaders recompute.
+inline std::vector<Surf> decodeSurfaces(const uint32_t* texels, int w, int h) {
+  std::vector<Surf> s(size_t(w) * h);
+  for (size_t i = 0; i < s.size(); ++i) s[i] = decodeTexel(texels + i * 2);
+  addSlopes(s, w, h);
   return s;
 }
 
@@ -60,25 +87,14 @@ struct GBufferCpu {
 inline float linearDepth(float d, float zNear, float zFar) { return zNear * zFar / (zNear + d * (zFar - zNear)); }
 inline std::vector<Surf> surfaces(const GBufferCpu& g, float zNear, float zFar) {
   std::vector<Surf> out(size_t(g.w) * g.h);
-  auto on = [&](int x, int y) {
-    return x >= 0 && y >= 0 && x < g.w && y < g.h && g.id[y * g.w + x] != gpu::kBackgroundId;
-  };
-  auto z = [&](int x, int y) { return linearDepth(g.depth[y * g.w + x], zNear, zFar); };
-  for (int y = 0; y < g.h; ++y)
-    for (int x = 0; x < g.w; ++x) {
-      Surf& s = out[y * g.w + x];
-      s.id = g.id[y * g.w + x];
-      if (s.sky()) continue;
-      s.z = z(x, y);
-      auto slope = [&](int dx, int dy) {
-        float best = 1e30f;
-        if (on(x + dx, y + dy)) best = std::min(best, std::abs(z(x + dx, y + dy) - s.z));
-        if (on(x - dx, y - dy)) best = std::min(best, std::abs(z(x - dx, y - dy) - s.z));
-        return best < 1e30f ? best : 0.0f;
-      };
-      s.zGrad = slope(1, 0) + slope(0, 1);
-      s.n = octDecode(vec2(snorm16(g.normals[(y * g.w + x) * 4]), snorm16(g.normals[(y * g.w + x) * 4 + 1])));
-    }
+  for (size_t i = 0; i < out.size(); ++i) {
+    Surf& s = out[i];
+    if (g.id[i] == gpu::kBackgroundId) continue;
+    s.id = g.id[i] & 0xFFFu;
+    s.z = linearDepth(g.depth[i], zNear, zFar);
+    s.n = octDecode(vec2(snorm10(toSnorm10(snorm16(g.normals[i * 4]))), snorm10(toSnorm10(snorm16(g.normals[i * 4 + 1])))));
+  }
+  addSlopes(out, g.w, g.h);
   return out;
 }
 
@@ -239,69 +255,63 @@ inline std::vector<float> shadowAtrous(const Frame& f, const std::vector<float>&
   return out;
 }
 
-// svgf_temporal.comp: raw RGBA, colour history RGBA, moments history (μ1, μ2, n, -) → colour, moments.
+// svgf_temporal.comp: raw RGBA, colour history (rgb, n), moments history (μ1, μ2) → colour (rgb,
+// n), moments, and the working image (rgb colour, a variance).
 inline void svgfTemporal(const Frame& f, const std::vector<vec4>& raw, const std::vector<vec4>& colorHist,
-                         const std::vector<vec4>& momentsHist, std::vector<vec4>& color, std::vector<vec4>& moments) {
+                         const std::vector<vec2>& momentsHist, std::vector<vec4>& color, std::vector<vec2>& moments,
+                         std::vector<vec4>& working) {
   color.assign(raw.size(), vec4(0));
-  moments.assign(raw.size(), vec4(0));
+  moments.assign(raw.size(), vec2(0));
+  working.assign(raw.size(), vec4(0));
   for (int y = 0; y < f.h; ++y)
     for (int x = 0; x < f.w; ++x) {
       ivec2 p(x, y);
-      vec4 fresh = raw[f.at(p)];
-      float l = luminance(vec3(fresh));
+      vec3 fresh = vec3(raw[f.at(p)]);
+      float l = luminance(fresh);
       Reproj r = f.reprojectAt(p);
-      vec4 c = fresh;
-      vec3 m(l, l * l, 1.0f);
+      vec3 c = fresh;
+      vec2 m(l, l * l);
+      float n = 1.0f;
       if (r.valid()) {
         vec4 ch(0);
-        vec3 mh(0);
+        vec2 mh(0);
         for (int k = 0; k < 4; ++k) {
           if (r.w[k] <= 0) continue;
           ch += r.w[k] * colorHist[f.at(r.tap[k])];
-          mh += r.w[k] * vec3(momentsHist[f.at(r.tap[k])]);
+          mh += r.w[k] * momentsHist[f.at(r.tap[k])];
         }
         ch /= r.sum;
         mh /= r.sum;
-        float n = std::min(mh.z + 1.0f, f.moving() ? gpu::kSvgfMaxLengthMoving : gpu::kSvgfMaxLengthStatic);
+        n = std::min(ch.a + 1.0f, f.moving() ? gpu::kSvgfMaxLengthMoving : gpu::kSvgfMaxLengthStatic);
         float alpha = std::max(1.0f / n, f.moving() ? gpu::kSvgfAlphaMinMoving : 0.0f);
-        c = ch + (fresh - ch) * alpha;
-        vec2 mm = vec2(mh) + (vec2(l, l * l) - vec2(mh)) * alpha;
-        m = vec3(mm, n);
+        c = vec3(ch) + (fresh - vec3(ch)) * alpha;
+        m = mh + (vec2(l, l * l) - mh) * alpha;
       }
-      color[f.at(p)] = c;
-      moments[f.at(p)] = vec4(m, 0);
-    }
-}
+      color[f.at(p)] = vec4(c, n);
+      moments[f.at(p)] = m;
 
-// svgf_variance.comp → rgb colour, a variance.
-inline std::vector<vec4> svgfVariance(const Frame& f, const std::vector<vec4>& color,
-                                      const std::vector<vec4>& moments) {
-  std::vector<vec4> out(color.size());
-  for (int y = 0; y < f.h; ++y)
-    for (int x = 0; x < f.w; ++x) {
-      ivec2 p(x, y);
-      vec3 m = vec3(moments[f.at(p)]);
+      // Variance: temporal, or from the centre's moments and its 7×7 neighbours' samples.
       const Surf& sp = f.cur[f.at(p)];
-      vec2 mu(m);
-      if (m.z < gpu::kSvgfMinTemporalVarianceLength && !sp.sky()) {
-        vec2 sum(0);
-        float weights = 0;
+      vec2 mu = m;
+      if (n < gpu::kSvgfMinTemporalVarianceLength && !sp.sky()) {
+        vec2 sum = m;
+        float weights = 1.0f;
         for (int j = -gpu::kSvgfVarianceRadius; j <= gpu::kSvgfVarianceRadius; ++j)
           for (int i = -gpu::kSvgfVarianceRadius; i <= gpu::kSvgfVarianceRadius; ++i) {
             ivec2 q = p + ivec2(i, j);
-            if (!f.inside(q) || f.cur[f.at(q)].sky()) continue;
-            float w = (i == 0 && j == 0) ? 1.0f : geometryWeight(sp, f.cur[f.at(q)], vec2(i, j));
-            sum += w * vec2(moments[f.at(q)]);
+            if ((i == 0 && j == 0) || !f.inside(q) || f.cur[f.at(q)].sky()) continue;
+            float w = geometryWeight(sp, f.cur[f.at(q)], vec2(i, j));
+            float lq = luminance(vec3(raw[f.at(q)]));
+            sum += w * vec2(lq, lq * lq);
             weights += w;
           }
         mu = sum / weights;
       }
       float var = std::max(0.0f, mu.y - mu.x * mu.x);
-      if (!f.moving()) var /= std::max(m.z, 1.0f);
+      if (!f.moving()) var /= n;
       var = std::min(var, gpu::kSvgfMaxVariance);
-      out[f.at(p)] = vec4(vec3(color[f.at(p)]), var);
+      working[f.at(p)] = vec4(c, var);
     }
-  return out;
 }
 
 // svgf_atrous.comp, one iteration; roughness per pixel in [0, 1].

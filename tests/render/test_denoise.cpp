@@ -91,63 +91,52 @@ TEST_F(Denoise, ShadowAtrousMatchesCpu) {
   }
 }
 
-TEST_F(Denoise, SvgfTemporalMatchesCpu) {
-  for (uint32_t flags : {kMoving, 0u, kReset}) {
-    TemporalCase c;
-    const std::vector<vec4> raw = radianceNoise(4);
-    const std::vector<vec4> colorHist = vec4sOf(noise(kPixels * 4, 5, 0.0f, 2.0f));
-    std::vector<vec4> momentsHist(kPixels);
-    const std::vector<float> r = noise(kPixels * 3, 6);
-    for (size_t i = 0; i < kPixels; ++i) {
-      const float mu = r[i * 3] * 2.0f;
-      momentsHist[i] = vec4(mu, mu * mu + r[i * 3 + 1], std::floor(r[i * 3 + 2] * 40.0f), 0.0f);
-    }
-    Frame fr(*this);
-    SurfacePair s{fr.surface("cur", c.cur), fr.surface("prev", c.prev)};
-    auto motion = fr.uploadHalves("motion", kMotionFormat, 1, motionFloats(c.motion));
-    auto rawImg = fr.uploadHalves("raw", VK_FORMAT_R16G16B16A16_SFLOAT, 1, flatten(raw));
-    auto colorPrev = fr.upload("color", kSvgfColorHistoryFormat, 1, flatten(colorHist));
-    auto momentsPrev = fr.upload("moments", kSvgfMomentsHistoryFormat, 1, flatten(momentsHist));
-    auto colorNext = fr.graph.createImage("color-next", svgfColorHistoryDesc(kSize));
-    auto momentsNext = fr.graph.createImage("moments-next", svgfMomentsHistoryDesc(kSize));
-    svgfTemporal(fr.graph, inputs(), "test", s, motion, rawImg, {colorPrev, colorNext}, {momentsPrev, momentsNext},
-                 stateOf(flags));
-    auto& colorBytes = fr.download(colorNext);
-    auto& momentBytes = fr.download(momentsNext);
-    auto& curBytes = fr.download(s.current);
-    auto& prevBytes = fr.download(s.previous);
-    fr.run();
-    const auto cur = surfacesOf(curBytes), prev = surfacesOf(prevBytes);
-    const ref::Frame f{kW, kH, cur, prev, c.motion, flags};
-    std::vector<vec4> color, moments;
-    ref::svgfTemporal(f, raw, colorHist, momentsHist, color, moments);
-    expectNear(floatsOf(colorBytes), flatten(color), 1e-5f, "colour");
-    expectNear(floatsOf(momentBytes), flatten(moments), 1e-5f, "moments");
+// One SVGF temporal pass (integration and variance estimate) against the reference; histories
+// of `maxLength` samples at most (short ones exercise the spatial variance estimate).
+void svgfTemporalCase(Denoise& t, uint32_t flags, float maxLength, uint32_t seed, const DenoiseInputs& in) {
+  TemporalCase c;
+  const std::vector<vec4> raw = radianceNoise(seed);
+  std::vector<vec4> colorHist = vec4sOf(noise(kPixels * 4, seed + 1, 0.0f, 2.0f));
+  std::vector<vec2> momentsHist(kPixels);
+  const std::vector<float> r = noise(kPixels * 3, seed + 2);
+  for (size_t i = 0; i < kPixels; ++i) {
+    const float mu = r[i * 3] * 2.0f;
+    momentsHist[i] = vec2(mu, mu * mu + r[i * 3 + 1]);
+    colorHist[i].a = std::floor(r[i * 3 + 2] * maxLength);  // the history length n
   }
+  Denoise::Frame fr(t);
+  SurfacePair s{fr.surface("cur", c.cur), fr.surface("prev", c.prev)};
+  auto motion = fr.uploadHalves("motion", kMotionFormat, 1, motionFloats(c.motion));
+  auto rawImg = fr.uploadHalves("raw", VK_FORMAT_R16G16B16A16_SFLOAT, 1, flatten(raw));
+  auto colorPrev = fr.upload("color", kSvgfColorHistoryFormat, 1, flatten(colorHist));
+  auto momentsPrev = fr.upload("moments", kSvgfMomentsHistoryFormat, 1, flatten(momentsHist));
+  auto colorNext = fr.graph.createImage("color-next", svgfColorHistoryDesc(kSize));
+  auto momentsNext = fr.graph.createImage("moments-next", svgfMomentsHistoryDesc(kSize));
+  auto work = createSvgfImage(fr.graph, kSize, "work");
+  auto& workBytes = fr.download(svgfTemporal(fr.graph, in, "test", s, motion, rawImg, {colorPrev, colorNext},
+                                             {momentsPrev, momentsNext}, work, stateOf(flags)));
+  auto& colorBytes = fr.download(colorNext);
+  auto& momentBytes = fr.download(momentsNext);
+  auto& curBytes = fr.download(s.current);
+  auto& prevBytes = fr.download(s.previous);
+  fr.run();
+  const auto cur = surfacesOf(curBytes), prev = surfacesOf(prevBytes);
+  const ref::Frame f{kW, kH, cur, prev, c.motion, flags};
+  std::vector<vec4> color, working;
+  std::vector<vec2> moments;
+  ref::svgfTemporal(f, raw, colorHist, momentsHist, color, moments, working);
+  expectNear(floatsOf(colorBytes), flatten(color), 1e-5f, "colour");
+  expectNear(floatsOf(momentBytes), flatten(moments), 1e-5f, "moments");
+  expectNear(halvesOf(workBytes), flatten(working), 1e-3f, "variance");
+}
+
+TEST_F(Denoise, SvgfTemporalMatchesCpu) {
+  for (uint32_t flags : {kMoving, 0u, kReset}) svgfTemporalCase(*this, flags, 40.0f, 4, inputs());
 }
 
 TEST_F(Denoise, SvgfVarianceMatchesCpu) {
-  const ref::GBufferCpu g = makeGBuffer();
-  const std::vector<vec4> color = vec4sOf(noise(kPixels * 4, 7, 0.0f, 2.0f));
-  std::vector<vec4> moments(kPixels);
-  const std::vector<float> r = noise(kPixels * 3, 8);
-  for (size_t i = 0; i < kPixels; ++i) {  // n from 1 to 8: both the temporal and the spatial estimate
-    const float mu = r[i * 3];
-    moments[i] = vec4(mu, mu * mu + 0.3f * r[i * 3 + 1], 1.0f + std::floor(r[i * 3 + 2] * 8.0f), 0.0f);
-  }
-  for (uint32_t flags : {kMoving, 0u}) {
-    Frame fr(*this);
-    auto surface = fr.surface("surface", g);
-    auto colorImg = fr.upload("color", kSvgfColorHistoryFormat, 1, flatten(color));
-    auto momentsImg = fr.upload("moments", kSvgfMomentsHistoryFormat, 1, flatten(moments));
-    auto& bytes = fr.download(svgfVariance(fr.graph, inputs(), "test", surface, colorImg, momentsImg, stateOf(flags)));
-    auto& sBytes = fr.download(surface);
-    fr.run();
-    const auto cur = surfacesOf(sBytes);
-    const std::vector<vec2> motion(kPixels, vec2(0));
-    const ref::Frame f{kW, kH, cur, cur, motion, flags};
-    expectNear(halvesOf(bytes), flatten(ref::svgfVariance(f, color, moments)), 1e-3f, "variance");
-  }
+  // n from 1 to 8 after the update: both the temporal and the spatial estimate.
+  for (uint32_t flags : {kMoving, 0u}) svgfTemporalCase(*this, flags, 8.0f, 7, inputs());
 }
 
 TEST_F(Denoise, SvgfAtrousMatchesCpu) {
@@ -173,7 +162,7 @@ TEST_F(Denoise, SvgfAtrousMatchesCpu) {
       expectNear(halvesOf(bytes), flatten(expected), 1e-3f, "svgf à-trous");
       if (histBytes) {
         std::vector<vec4> h = vec4sOf(floatsOf(*histBytes)), e = expected;
-        for (size_t i = 0; i < kPixels; ++i) h[i].a = e[i].a = 0.0f;  // history alpha is 1, not the variance
+        for (size_t i = 0; i < kPixels; ++i) h[i].a = e[i].a = 0.0f;  // history alpha is n, not the variance
         expectNear(flatten(h), flatten(e), 1e-3f, "history");
       }
       // Mirror pixels (right plane, rows ≥ 12) keep their value: the spatial filter skips them.
