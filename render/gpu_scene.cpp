@@ -191,6 +191,7 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   gs.drawRecords = tableBuffer(ctx, drawRows, "draw-records");
   gs.cull = createCullBuffers(ctx, uint32_t(gs.draws.size()));
   uploadEmissiveTriangles(ctx, scene, gs);
+  gs.bounds = scene.bounds();
   gs.uploadMs = msSince(t0);
 
   if (!ctx.caps().rayTracing()) {  // the raster mode needs no acceleration structures

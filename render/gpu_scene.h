@@ -74,6 +74,9 @@ struct GpuScene {
   uint32_t lightCount = 0;
   bool anyAlphaTested = false;  // MASK or BLEND somewhere: rays may not be forced opaque
   uint64_t triangleCount = 0;   // over all instances
+  // The scene's world bounds at upload (rest pose): scene::Scene::bounds() visits every vertex of
+  // every instance, far too slow per frame with thousands of instances.
+  scene::Aabb bounds;
   uint64_t sphereCount = 0;
   rhi::AccelBuildStats accelStats;
   double uploadMs = 0, accelBuildMs = 0;

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "render/gpu_scene.h"
 #include "render/pipelines.h"
 #include "rhi/context.h"
 #include "rhi/memory.h"
@@ -14,7 +15,7 @@ RasterFrame::RasterFrame(rhi::Context& ctx)
 
 RasterFrameOutput RasterFrame::record(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                       const scene::Scene& scene, const scene::Camera& camera, uint32_t shadowLights) {
-  atlas_ = planShadowAtlas(scene, camera, float(in.size.width) / float(in.size.height), shadowLights);
+  atlas_ = planShadowAtlas(scene, in.scene.bounds, camera, float(in.size.width) / float(in.size.height), shadowLights);
   std::memcpy(setup_.mapped(), &atlas_.setup, sizeof(atlas_.setup));
   RasterFrameOutput out;
   const graph::ImageHandle atlas = renderShadowAtlas(graph, in, atlas_);

@@ -74,7 +74,7 @@ Renderer::Impl::Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
 
 float Renderer::Impl::aoRadius(const RenderSettings& s) const {
   if (s.aoRadius > 0.0f) return s.aoRadius;
-  const scene::Aabb b = scene.bounds();
+  const scene::Aabb& b = gpu.bounds;
   const float diagonal = b.valid() ? glm::length(b.max - b.min) : 0.0f;
   return diagonal > 0.0f ? kAoRadiusFraction * diagonal : 1.0f;
 }

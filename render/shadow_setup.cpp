@@ -48,10 +48,10 @@ std::vector<float> cascadeSplits(float nearPlane, float farPlane, uint32_t count
   return ends;
 }
 
-ShadowAtlas planShadowAtlas(const scene::Scene& scene, const scene::Camera& cam, float aspect, uint32_t shadowLights) {
+ShadowAtlas planShadowAtlas(const scene::Scene& scene, scene::Aabb bounds, const scene::Camera& cam, float aspect,
+                            uint32_t shadowLights) {
   ShadowAtlas atlas;
   gpu::ShadowSetup& s = atlas.setup;
-  scene::Aabb bounds = scene.bounds();
   if (!bounds.valid()) bounds = {glm::vec3(-1.0f), glm::vec3(1.0f)};
   const auto box = corners(bounds);
   const float diagonal = std::max(glm::length(bounds.max - bounds.min), 1e-3f);

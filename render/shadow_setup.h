@@ -31,8 +31,13 @@ struct ShadowAtlas {
 };
 
 // Lays out the shadow views of the first `shadowLights` lights for this camera.
-ShadowAtlas planShadowAtlas(const scene::Scene& scene, const scene::Camera& camera, float aspect,
+// `bounds`: the scene's world bounds (GpuScene::bounds; the overload without computes them).
+ShadowAtlas planShadowAtlas(const scene::Scene& scene, scene::Aabb bounds, const scene::Camera& camera, float aspect,
                             uint32_t shadowLights);
+inline ShadowAtlas planShadowAtlas(const scene::Scene& scene, const scene::Camera& camera, float aspect,
+                                   uint32_t shadowLights) {
+  return planShadowAtlas(scene, scene.bounds(), camera, aspect, shadowLights);
+}
 
 // View-space distances where the cascades end (practical split scheme between near and far).
 std::vector<float> cascadeSplits(float nearPlane, float farPlane, uint32_t count, float lambda);
