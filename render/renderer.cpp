@@ -44,6 +44,7 @@ const std::vector<std::string>& aovNames() {
     for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-raw");
     for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-denoised");
     n.push_back("variance");  // --mode pathtrace: the per-pixel variance of the accumulated mean
+    for (const char* raw : {"raw-ao", "raw-direct", "raw-indirect", "raw-specular"}) n.push_back(raw);  // --raw-rays
     return n;
   }();
   return names;
@@ -116,9 +117,11 @@ RayCount launchedRays(const std::string& pass, uint32_t width, uint32_t height, 
   // the surface return before tracing, and paths end early, so all but the primary rays are bounds.
   if (pass == "gbuffer-traced" || pass == "raw-gbuffer-traced") return {pixels, true};
   if (pass == "rt-shadows" || pass == "raw-rt-shadows") return {pixels * shadowLayers, false};
-  if (pass == "rt-ao" || pass == "rt-direct") return {pixels, false};
-  if (pass == "rt-indirect") return {pixels * 2, false};
+  // Raw twins (raw_rays.cpp) count the same; raw-rt-specular replays only the first bounce.
+  if (pass == "rt-ao" || pass == "rt-direct" || pass == "raw-rt-ao" || pass == "raw-rt-direct") return {pixels, false};
+  if (pass == "rt-indirect" || pass == "raw-rt-indirect") return {pixels * 2, false};
   if (pass == "rt-specular") return {pixels * uint64_t(maxDepth) * (1u + lightsPerHit), false};
+  if (pass == "raw-rt-specular") return {pixels * (1u + lightsPerHit), false};
   return {};
 }
 
@@ -486,6 +489,7 @@ struct Renderer::Impl {
 
       GBuffer gb = out.primaryUsed == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
       graph::ImageHandle raw, visibility, specularRaw, specular, aoRaw, ao, indirectRaw, indirect, hdr;
+      RawTwinImages rawTwins;  // --raw-rays
       if (rasterMode) {
         const RasterFrameOutput r = raster.record(graph, in, gb, scene, camera, shadowLights());
         raw = visibility = r.visibility;
@@ -509,6 +513,7 @@ struct Renderer::Impl {
           if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
           traceRawPrimary(graph, in, *rawPipelines);
           traceRawShadows(graph, in, gb, shadowLights(), *rawPipelines);
+          rawTwins = traceRawTwins(graph, in, gb, manyLights, *rawPipelines);
         }
         // Many-light mode traces no shadow layers: lighting reads none, so nothing to denoise.
         visibility = raw;
@@ -574,6 +579,9 @@ struct Renderer::Impl {
             {"shadow-raw", {raw, 0}},       {"shadow-denoised", {visibility, 0}}, {"reflection-raw", {specularRaw, 0}},
             {"reflection-denoised", {specular, 0}}, {"ao-raw", {aoRaw, 0}},       {"ao-denoised", {ao, 0}},
             {"indirect-raw", {indirectRaw, 0}},     {"indirect-denoised", {indirect, 0}}};
+        for (auto [name, h] : {std::pair{"raw-ao", rawTwins.ao}, {"raw-direct", rawTwins.direct},
+                               {"raw-indirect", rawTwins.indirect}, {"raw-specular", rawTwins.specular}})
+          if (h.valid()) stages[name] = {h, 0};
         for (uint32_t i = 0; i < shadowLights(); ++i) {
           stages["shadow" + std::to_string(i) + "-raw"] = {raw, i};
           stages["shadow" + std::to_string(i) + "-denoised"] = {visibility, i};
@@ -582,6 +590,10 @@ struct Renderer::Impl {
           auto it = stages.find(name);
           if (name == "variance") {
             log::info("AOV 'variance' skipped: only --mode pathtrace has it");
+            continue;
+          }
+          if (it == stages.end() && name.rfind("raw-", 0) == 0) {
+            log::info("AOV '{}' skipped: only --raw-rays traces it (raw-direct: with many lights)", name);
             continue;
           }
           if (it == stages.end()) {  // a light the scene does not have
@@ -654,7 +666,8 @@ struct Renderer::Impl {
                    uint32_t(v.size())};
       ps.samplesMs = passTimes[name];
       RayCount rc = launchedRays(name, s.width, s.height, shadowLights(), lightsPerHit, bounces);
-      if ((name == "rt-ao" && !s.ao) || (name == "rt-indirect" && !indirectOn(s))) rc = {};  // the shader returns at once
+      const std::string twin = name.rfind("raw-", 0) == 0 ? name.substr(4) : name;
+      if ((twin == "rt-ao" && !s.ao) || (twin == "rt-indirect" && !indirectOn(s))) rc = {};  // the shader returns at once
       ps.rays = rc.rays;
       ps.raysExact = rc.exact;
       if (name.rfind("raw-", 0) != 0) out.frameMedianMs += ps.medianMs;
