@@ -21,8 +21,9 @@
 // bounces, whose directions need the materials at the hits (mostly glass and mirror pixels); the
 // pass's figure over this one's is therefore the share of the raw rate its first bounce (and the
 // shading around it) reaches, and deeper bounces count against it. Rays are opaque, misses trivial.
-// Output: 0 where the pass traces nothing (its alpha 0), 0.25 where the pass writes a value without
-// tracing (a glossy sample below the surface, a half-rate skip), 0.5 first ray missed, 1 it hit.
+// Output: 0 where the pass traces nothing (its alpha 0), 0.125 where a glossy sample leaves below the
+// surface (nothing traced, 0 written), 0.25 a half-rate skip (filled from the neighbours), 0.5 the
+// first ray missed, 1 it hit.
 layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = 2) uniform sampler2D depthTex;
 layout(set = 0, binding = 3) uniform sampler2D normalTex;
@@ -52,7 +53,7 @@ void main() {
   vec4 result;
   uint rng;
   if (!specularFirstRay(px, origin, dir, beta, glossy, result, rng)) {
-    imageStore(outHit, px, vec4(result.a > 0.0 ? 0.25 : 0.0));
+    imageStore(outHit, px, vec4(result.a == kHalfRateSkipped ? 0.25 : result.a > 0.0 ? 0.125 : 0.0));
     return;
   }
   hitT = floatBitsToUint(-1.0);

@@ -2,6 +2,7 @@
 // rays of their passes: where that is checkable from the passes' raw AOVs it is checked here,
 // exactly where the replay is exact. Also the half-rate glossy checkerboard of rt-specular.
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <vector>
@@ -54,9 +55,10 @@ TEST(RawTwins, AoTwinTracesTheSameRaysAsRtAo) {
 }
 
 TEST(RawTwins, SpecularTwinTracesWhereTheSpecularPassDoes) {
-  // raw-specular: 0 where rt-specular writes alpha 0 (not traced), 0.25 where it writes a value
-  // without tracing (half-rate skip, filled; a glossy sample below the surface), 0.5/1 first ray
-  // missed/hit. Half-rate skips form a checkerboard: no two are 4-neighbours.
+  // raw-specular: 0 where rt-specular writes alpha 0 (not traced), 0.125 where a glossy sample
+  // leaves below the surface (nothing traced, alpha 1), 0.25 a half-rate skip (filled from its
+  // neighbours, alpha 1), 0.5/1 first ray missed/hit. Half-rate skips form a checkerboard: no two
+  // are 4-neighbours.
   auto dir = testDir();
   auto img = renderTwins(dir, "builtin:whitted", "--primary raster", {"reflection-raw", "raw-specular"});
   ASSERT_EQ(img.size(), 2u);
@@ -67,13 +69,23 @@ TEST(RawTwins, SpecularTwinTracesWhereTheSpecularPassDoes) {
     for (int x = 0; x < kW; ++x) {
       const float r = at(raw, x, y), alpha = at(pass, x, y, 3);
       ++counts[r];
-      ASSERT_TRUE(r == 0.0f || r == 0.25f || r == 0.5f || r == 1.0f) << r;
+      ASSERT_TRUE(r == 0.0f || r == 0.125f || r == 0.25f || r == 0.5f || r == 1.0f) << r;
       ASSERT_EQ(r > 0.0f, alpha == 1.0f) << x << "," << y << " raw " << r << " alpha " << alpha;
       ASSERT_EQ(r == 0.0f, alpha == 0.0f) << x << "," << y;
       for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(at(pass, x, y, k)));
-      if (r == 0.25f && x + 1 < kW) EXPECT_NE(at(raw, x + 1, y), 0.25f) << x << "," << y;
-      if (r == 0.25f && y + 1 < kH) EXPECT_NE(at(raw, x, y + 1), 0.25f) << x << "," << y;
+      if (r == 0.25f && x + 1 < kW) {
+        EXPECT_NE(at(raw, x + 1, y), 0.25f) << x << "," << y;
+      }
+      if (r == 0.25f && y + 1 < kH) {
+        EXPECT_NE(at(raw, x, y + 1), 0.25f) << x << "," << y;
+      }
     }
+  // First rays of rt-specular per pixel, before the checkerboard (every traced or skipped pixel)
+  // and now (traced only): the figure the half rate changes.
+  const double n = kW * kH;
+  std::printf("[raw-specular] first rays per pixel: %.3f with every glossy pixel traced, %.3f now "
+              "(%.3f skipped: half-rate glossy)\n",
+              (counts[0.25f] + counts[0.5f] + counts[1.0f]) / n, (counts[0.5f] + counts[1.0f]) / n, counts[0.25f] / n);
   // The marble floor (roughness 0.3) skips half its glossy rays; its traced half and the chrome and
   // ice objects both hit and miss.
   EXPECT_GT(counts[0.25f], size_t(kW * kH / 10)) << "no half-rate checkerboard on the floor";
@@ -93,14 +105,16 @@ TEST(RawTwins, IndirectTwinBounceRaysHitInsideTheBoxAndMissUnderTheSky) {
       for (int x = 0; x < kW; ++x) {
         const float r = at(img["raw-indirect"], x, y);
         // A bounce ray is traced only where rt-indirect writes alpha 1.
-        if (r > 0.0f) EXPECT_EQ(at(img["indirect-raw"], x, y, 3), 1.0f) << scene << " " << x << "," << y;
+        if (r > 0.0f) {
+          EXPECT_EQ(at(img["indirect-raw"], x, y, 3), 1.0f) << scene << " " << x << "," << y;
+        }
         traced += r > 0.0f;
         hits += r == 1.0f;
       }
     EXPECT_GT(traced, size_t(kW * kH / 4)) << scene;
     return double(hits) / double(std::max<size_t>(traced, 1));
   };
-  EXPECT_GT(fraction("builtin:cornell"), 0.8);
+  EXPECT_GT(fraction("builtin:cornell"), 0.6);  // open at the front: ~3/4 hit
   EXPECT_LT(fraction("builtin:whitted"), 0.5);
 }
 
