@@ -120,7 +120,10 @@ int run(int argc, char** argv) {
                      "Also write intermediates as <stem>.<name>.png and .exr: all, or a comma-separated list of "
                      "depth, normal, albedo, material, emissive, shadow-raw, shadow-denoised, reflection-raw, "
                      "reflection-denoised, ao-raw, ao-denoised, indirect-raw, indirect-denoised, and per "
-                     "shadowed light N (0-7) shadowN-raw, shadowN-denoised; --mode pathtrace: variance (of the mean)");
+                     "shadowed light N (0-7) shadowN-raw, shadowN-denoised; --mode pathtrace: variance (of the mean); "
+                     "--raw-rays: raw-ao, raw-direct, raw-indirect, raw-specular (what each raw twin's rays did)");
+  render->add_flag("--raw-rays", ro.settings.rawRays,
+                   "Also trace every ray-traced pass's rays with trivial shaders (the bench's raw-rate twins)");
   std::vector<std::string> moveInstance;
   render->add_option("--move-instance", moveInstance,
                      "At frame FRAME (0-based) move the named instance to X,Y,Z: NAME:X,Y,Z@FRAME, repeatable "
@@ -145,8 +148,8 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(1u, 100000u));
   bench->add_option("--seed", bo.axes.seed, "Random seed (default 1)");
   bench->add_flag("--raw-rays", bo.axes.rawRays,
-                  "Also trace the primary and shadow rays with trivial shaders and report each pass's share "
-                  "of that raw ray rate (raw_fraction)");
+                  "Also trace the rays of every ray-traced pass (primary, shadows, AO, direct, indirect, specular) "
+                  "with trivial shaders and report each pass's share of that raw ray rate (raw_fraction)");
   bench->add_option("--plan", bo.plan, "A JSON plan of sweeps (bench/plans/*.json) instead of the axes above");
   bench->add_option("--json", bo.json, "Results (default bench-out/bench.json); CSV and SVG beside it");
   bench->add_option("--csv", bo.csv, "CSV output (default: the --json path with .csv)");

@@ -72,6 +72,8 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   p.taa = rhi::createComputePipeline(ctx, "taa.comp", taa, 16);
   const rhi::Binding tone[] = {{1, kSampled}, {2, kStorage}};
   p.tonemap = rhi::createComputePipeline(ctx, "tonemap.comp", tone, 24);
+  const rhi::Binding fill[] = {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}};
+  p.specularFill = rhi::createComputePipeline(ctx, "specular_fill.comp", fill, 0);
   if (!ctx.caps().rayTracing()) return p;
 
   // Hit groups by geometry kind (gpu::kHitGroupTriangles, gpu::kHitGroupSpheres): alpha-tested
@@ -142,6 +144,23 @@ RawRayPipelines RawRayPipelines::create(rhi::Context& ctx, VkDescriptorSetLayout
   shadow.globalSet = textures;
   shadow.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kStorage}};
   p.shadows = rhi::RayTracingPipeline(ctx, shadow);
+  rhi::RayTracingPipelineDesc ao = shadow;  // AO and many-light shadow rays: shadow rays of their own
+  ao.raygen = "raw_ao.rgen";
+  p.ao = rhi::RayTracingPipeline(ctx, ao);
+  ao.raygen = "raw_direct.rgen";
+  p.direct = rhi::RayTracingPipeline(ctx, ao);
+  // Bounce rays: a closest hit that returns t, and a miss that leaves the payload; shadow rays miss 1.
+  rhi::RayTracingPipelineDesc bounce;
+  bounce.raygen = "raw_indirect.rgen";
+  bounce.miss = {"raw.rmiss", "shadow.rmiss"};
+  bounce.hitGroups = {{"raw_t.rchit", "", ""}, {"raw_t.rchit", "", "sphere.rint"}};  // opaque
+  bounce.globalSet = textures;
+  bounce.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kStorage}};
+  p.indirect = rhi::RayTracingPipeline(ctx, bounce);
+  bounce.raygen = "raw_specular.rgen";
+  bounce.bindings = {{0, kUniform}, {1, kTlas},    {2, kSampled}, {3, kSampled},
+                     {4, kSampled}, {5, kSampled}, {6, kStorage}, {7, kSampled}};
+  p.specular = rhi::RayTracingPipeline(ctx, bounce);
   return p;
 }
 

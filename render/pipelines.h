@@ -31,6 +31,7 @@ struct Pipelines {
   rhi::RayTracingPipeline gbufferTraced;
   rhi::RayTracingPipeline shadows;
   rhi::RayTracingPipeline specular;  // reflections and refractions (bounce loop)
+  rhi::Pipeline specularFill;        // the half-rate glossy pixels specular skipped this frame
   rhi::RayTracingPipeline direct;    // many-light stochastic direct light
   rhi::RayTracingPipeline ao;        // ambient occlusion
   rhi::RayTracingPipeline indirect;  // one-bounce indirect diffuse
@@ -52,11 +53,15 @@ struct Pipelines {
 // The path tracer's pipeline, created only when a render asks for --mode pathtrace.
 rhi::RayTracingPipeline createPathTracePipeline(rhi::Context& ctx, VkDescriptorSetLayout textures);
 
-// Raw-ray-rate twins of the traced G-buffer and the shadow pass (RenderSettings::rawRays): the same
-// rays with trivial hit and miss shaders. Created only when asked for.
+// Raw-ray-rate twins of the ray-traced passes (RenderSettings::rawRays, render/passes/raw_rays.cpp):
+// the same rays with trivial hit and miss shaders. Created only when asked for.
 struct RawRayPipelines {
   rhi::RayTracingPipeline primary;
   rhi::RayTracingPipeline shadows;
+  rhi::RayTracingPipeline ao;
+  rhi::RayTracingPipeline direct;
+  rhi::RayTracingPipeline indirect;  // bounce ray with a closest hit returning t, then a shadow ray
+  rhi::RayTracingPipeline specular;  // the first bounce ray, then shadow rays at its hit
   static RawRayPipelines create(rhi::Context& ctx, VkDescriptorSetLayout textures);
 };
 

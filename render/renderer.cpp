@@ -26,6 +26,7 @@ const std::vector<std::string>& aovNames() {
     for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-raw");
     for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-denoised");
     n.push_back("variance");  // --mode pathtrace: the per-pixel variance of the accumulated mean
+    for (const char* raw : {"raw-ao", "raw-direct", "raw-indirect", "raw-specular"}) n.push_back(raw);  // --raw-rays
     return n;
   }();
   return names;
@@ -42,9 +43,11 @@ RayCount launchedRays(const std::string& pass, uint32_t width, uint32_t height, 
   // the surface return before tracing, and paths end early, so all but the primary rays are bounds.
   if (pass == "gbuffer-traced" || pass == "raw-gbuffer-traced") return {pixels, true};
   if (pass == "rt-shadows" || pass == "raw-rt-shadows") return {pixels * shadowLayers, false};
-  if (pass == "rt-ao" || pass == "rt-direct") return {pixels, false};
-  if (pass == "rt-indirect") return {pixels * 2, false};
+  // Raw twins (raw_rays.cpp) count the same; raw-rt-specular replays only the first bounce.
+  if (pass == "rt-ao" || pass == "rt-direct" || pass == "raw-rt-ao" || pass == "raw-rt-direct") return {pixels, false};
+  if (pass == "rt-indirect" || pass == "raw-rt-indirect") return {pixels * 2, false};
   if (pass == "rt-specular") return {pixels * uint64_t(maxDepth) * (1u + lightsPerHit), false};
+  if (pass == "raw-rt-specular") return {pixels * (1u + lightsPerHit), false};
   return {};
 }
 

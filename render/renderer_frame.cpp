@@ -146,6 +146,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
     traceRawPrimary(graph, in, *rawPipelines);
     traceRawShadows(graph, in, gb, shadowLights(), *rawPipelines);
+    o.rawTwins = traceRawTwins(graph, in, gb, manyLights, *rawPipelines);
   }
   // Many-light mode traces no shadow layers: lighting reads none, so nothing to denoise.
   o.shadow = o.shadowRaw;

@@ -42,6 +42,7 @@ inline constexpr uint32_t kMaxTimedPasses = 96;
 // image before TAA.
 struct FrameImages {
   graph::ImageHandle shadowRaw, shadow, specularRaw, specular, aoRaw, ao, indirectRaw, indirect, hdr;
+  RawTwinImages rawTwins;  // --raw-rays
 };
 
 struct Renderer::Impl {

@@ -89,6 +89,9 @@ void Renderer::Impl::addReadbacks(graph::RenderGraph& graph, const GBuffer& gb, 
       {"ao-denoised", {images.ao, 0}},
       {"indirect-raw", {images.indirectRaw, 0}},
       {"indirect-denoised", {images.indirect, 0}}};
+  for (auto [name, h] : {std::pair{"raw-ao", images.rawTwins.ao}, {"raw-direct", images.rawTwins.direct},
+                         {"raw-indirect", images.rawTwins.indirect}, {"raw-specular", images.rawTwins.specular}})
+    if (h.valid()) stages[name] = {h, 0};
   for (uint32_t i = 0; i < shadowLights(); ++i) {
     stages["shadow" + std::to_string(i) + "-raw"] = {images.shadowRaw, i};
     stages["shadow" + std::to_string(i) + "-denoised"] = {images.shadow, i};
@@ -97,6 +100,10 @@ void Renderer::Impl::addReadbacks(graph::RenderGraph& graph, const GBuffer& gb, 
     auto it = stages.find(name);
     if (name == "variance") {
       log::info("AOV 'variance' skipped: only --mode pathtrace has it");
+      continue;
+    }
+    if (it == stages.end() && name.rfind("raw-", 0) == 0) {
+      log::info("AOV '{}' skipped: only --raw-rays traces it (raw-direct: with many lights)", name);
       continue;
     }
     if (it == stages.end()) {  // a light the scene does not have
@@ -123,7 +130,8 @@ RenderOutput Renderer::Impl::endRun() {
   const uint32_t lightsPerHit = manyLights ? 1u : gpu.lightCount;
   const uint32_t bounces = specularBounces(s);
   summarisePasses(r.passOrder, r.passTimes, out, [&](const std::string& name) {
-    if ((name == "rt-ao" && !s.ao) || (name == "rt-indirect" && !indirectOn(s))) return RayCount{};  // returns at once
+    const std::string twin = name.rfind("raw-", 0) == 0 ? name.substr(4) : name;  // a twin counts as its pass
+    if ((twin == "rt-ao" && !s.ao) || (twin == "rt-indirect" && !indirectOn(s))) return RayCount{};  // returns at once
     return launchedRays(name, s.width, s.height, shadowLights(), lightsPerHit, bounces);
   });
   run.reset();

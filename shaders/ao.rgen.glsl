@@ -5,8 +5,8 @@
 
 // Ray-traced ambient occlusion from the G-buffer (TECHNIQUES.md §13): one cosine-weighted ray about
 // the shading normal per pixel per frame, from P offset along the geometric normal, as long as the
-// AO radius; any shadow caster in between occludes (terminate on first hit, no closest hit). With
-// cosine sampling the AO is the plain mean of these visibilities.
+// AO radius (lib/ao_ray.glsl); any shadow caster in between occludes (terminate on first hit, no
+// closest hit). With cosine sampling the AO is the plain mean of these visibilities.
 // Output (R16F, one layer): 1 unoccluded, 0 occluded; directions under the geometric surface count
 // as occluded (the surface itself blocks them); background pixels and AO off write 1.
 layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
@@ -16,28 +16,20 @@ layout(set = 0, binding = 4, r16f) uniform writeonly image2DArray outAo;
 
 layout(location = 0) rayPayloadEXT uint visible;
 
+#include "lib/ao_ray.glsl"
+
 void main() {
   ivec2 px = ivec2(gl_LaunchIDEXT.xy);
-  float depth = texelFetch(depthTex, px, 0).r;
-  if (isBackground(depth) || (frame.effectFlags & kEffectAo) == 0u) {
-    imageStore(outAo, ivec3(px, 0), vec4(1.0));
+  vec3 origin, dir;
+  float value;
+  if (!aoRay(px, origin, dir, value)) {
+    imageStore(outAo, ivec3(px, 0), vec4(value));
     return;
   }
-  vec2 uv = (vec2(px) + 0.5) / vec2(gl_LaunchSizeEXT.xy);
-  vec3 p = worldFromDepth(frame.worldFromClip, uv, depth);
-  vec4 nn = texelFetch(normalTex, px, 0);
-  vec3 n = octDecode(nn.xy), ng = octDecode(nn.zw);
-  uint rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kAoStream);
-  vec3 dir = cosineSampleHemisphere(n, vec2(rnd(rng), rnd(rng)));
-  if (dot(dir, ng) <= 0.0) {
-    imageStore(outAo, ivec3(px, 0), vec4(0.0));
-    return;
-  }
-  float eps = gbufferRayOffset(frame.worldFromClip, uv, depth, p);
   visible = 0u;
   uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT |
                ((frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT);
   // Casters only: a light's visible shape does not occlude the light around it.
-  traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, p + ng * eps, 0.0, dir, frame.aoRadius, 0);
+  traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, frame.aoRadius, 0);
   imageStore(outAo, ivec3(px, 0), vec4(float(visible)));
 }

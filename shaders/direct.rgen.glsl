@@ -7,6 +7,7 @@
 #include "lib/textures.glsl"
 #include "lib/brdf.glsl"
 #include "lib/environment.glsl"
+#include "lib/light_ray.glsl"
 
 // Many-light direct lighting (TECHNIQUES.md §8), used when the scene has more lights than shadow
 // layers: per pixel one light picked by importance (lib/light_select.glsl), one shadow ray towards a
@@ -24,16 +25,18 @@ layout(location = 0) rayPayloadEXT uint visible;
 
 float gDepthError;  // P's reconstruction error from quantised depth: part of the ray offset
 
+// The shadow ray of lib/light_ray.glsl, offset by more than P's reconstruction error; raw_direct.rgen
+// replays it.
+float directRayOffset(vec3 p) { return max(hitRayOffset(p), 4.0 * gDepthError); }
+
 float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
-  LightRecord light = Lights(frame.lights).l[i];
-  float dist;
-  vec3 dir = sampleLightDirection(light, p, vec2(rnd(rng), rnd(rng)), dist);
-  if (dot(dir, ng) <= 0.0) return 0.0;
-  float eps = max(max(max(abs(p.x), max(abs(p.y), abs(p.z))), 1.0) * 1e-4, 4.0 * gDepthError);
+  vec3 origin, dir;
+  float tMax;
+  if (!lightShadowRay(i, p, ng, directRayOffset(p), rng, origin, dir, tMax)) return 0.0;
   visible = 0u;
   uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT |
                ((frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT);
-  traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, p + ng * eps, 0.0, dir, max(dist - eps, 0.0), 0);
+  traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, tMax, 0);
   return float(visible);
 }
 

@@ -11,6 +11,7 @@
 #include "lib/light_select.glsl"
 #include "lib/brdf.glsl"
 #include "lib/environment.glsl"
+#include "lib/light_ray.glsl"
 
 // One-bounce indirect diffuse from the G-buffer (TECHNIQUES.md §13): one cosine-weighted ray about
 // the shading normal per pixel per frame. A hit is shaded with its emission, direct light from one
@@ -39,36 +40,28 @@ vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, inout
   vec3 l;
   float dist;
   vec3 incident = lightIncident(light, p, l, dist);
-  float sampledDist;
-  vec3 dir = sampleLightDirection(light, p, vec2(rnd(rng), rnd(rng)), sampledDist);
-  if (dot(dir, ng) <= 0.0) return vec3(0.0);
-  float eps = max(max(abs(p.x), max(abs(p.y), abs(p.z))), 1.0) * 1e-4;
+  vec3 origin, dir;
+  float tMax;
+  if (!lightShadowRay(chosen, p, ng, hitRayOffset(p), rng, origin, dir, tMax)) return vec3(0.0);
   visible = 0u;
   traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | baseRayFlags(),
-              kMaskCastsShadow, 0, 0, 1, p + ng * eps, 0.0, dir, max(sampledDist - eps, 0.0), 1);
+              kMaskCastsShadow, 0, 0, 1, origin, 0.0, dir, tMax, 1);
   if (visible == 0u) return vec3(0.0);
   float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
   return evalBsdfCos(bsdf, n, v, l, 0.5 * widen) * incident * invPdf;
 }
 
+#include "lib/indirect_ray.glsl"
+
 void main() {
   ivec2 px = ivec2(gl_LaunchIDEXT.xy);
-  float depth = texelFetch(depthTex, px, 0).r;
-  if (isBackground(depth) || (frame.effectFlags & kEffectIndirect) == 0u) {
-    imageStore(outIndirect, px, vec4(0.0));
+  vec3 origin, dir;
+  vec4 value;
+  uint rng;
+  if (!indirectRay(px, origin, dir, value, rng)) {
+    imageStore(outIndirect, px, value);
     return;
   }
-  vec2 uv = (vec2(px) + 0.5) / vec2(gl_LaunchSizeEXT.xy);
-  vec3 p = worldFromDepth(frame.worldFromClip, uv, depth);
-  vec4 nn = texelFetch(normalTex, px, 0);
-  vec3 n = octDecode(nn.xy), ng = octDecode(nn.zw);
-  uint rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kIndirectStream);
-  vec3 dir = cosineSampleHemisphere(n, vec2(rnd(rng), rnd(rng)));
-  if (dot(dir, ng) <= 0.0) {  // under the geometric surface: the surface itself blocks it
-    imageStore(outIndirect, px, vec4(0.0, 0.0, 0.0, 1.0));
-    return;
-  }
-  vec3 origin = p + ng * gbufferRayOffset(frame.worldFromClip, uv, depth, p);
   payload.t = -1.0;
   traceRayEXT(tlas, baseRayFlags(), kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
   vec3 radiance;

@@ -59,6 +59,14 @@ struct RawRayPipelines;
 void traceRawPrimary(graph::RenderGraph& graph, const FrameInputs& in, const RawRayPipelines& raw);
 void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t lights,
                      const RawRayPipelines& raw);
+// The raw-rate twins of rt-ao, rt-direct (many-light mode only), rt-indirect and rt-specular
+// ("raw-rt-ao", ...; raw_rays.cpp says what each replays). Their R16F images mark what the rays did
+// (AOVs "raw-ao", "raw-direct", "raw-indirect", "raw-specular"); `direct` is invalid without many lights.
+struct RawTwinImages {
+  graph::ImageHandle ao, direct, indirect, specular;
+};
+RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, bool manyLights,
+                            const RawRayPipelines& raw);
 // Denoised by denoiseShadows() (render/passes/denoise.h).
 
 // Reflections and refractions of mirror, metal and glass pixels (RGBA16F radiance, 0 elsewhere).

@@ -1,6 +1,12 @@
-// Raw ray rates (rayster bench --raw-rays): the primary and shadow rays of the frame traced again
+// Raw ray rates (rayster bench --raw-rays): the rays of the frame's ray-traced passes traced again
 // with trivial shaders into scratch images, so each pass can report the share of the device's raw
-// ray rate it reaches (its rays are the same; only shading and memory traffic differ).
+// ray rate it reaches (its rays are the same; only shading and memory traffic differ). Exact
+// replays: primary, shadow, AO and many-light direct rays, the indirect bounce ray and the specular
+// path's first ray. Approximate: the shadow rays at those bounce hits (the twins know only the hit
+// distance, not the hit's normal) and, for specular, no deeper bounces (raw_specular.rgen).
+#include <utility>
+#include <vector>
+
 #include "render/gpu_scene.h"
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
@@ -10,6 +16,32 @@ namespace rayster::render {
 namespace {
 // Results nobody reads: a side effect keeps the graph from culling the pass.
 constexpr VkImageUsageFlags kScratchUsage = VK_IMAGE_USAGE_STORAGE_BIT;
+
+// One twin: a full-screen launch of `pipe` reading G-buffer images at their bindings and writing
+// one R16F image (readable as an AOV, for the tests that compare it with its pass) at `outBinding`.
+graph::ImageHandle traceTwin(graph::RenderGraph& graph, const FrameInputs& in, const char* pass, const char* image,
+                             std::vector<std::pair<uint32_t, graph::ImageHandle>> reads, uint32_t outBinding,
+                             const rhi::RayTracingPipeline& pipe) {
+  graph::ImageHandle out = graph.createImage(
+      image, {kVisibilityFormat, in.size.width, in.size.height, 1, kScratchUsage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+  graph.addPass(
+      pass,
+      [&](graph::PassBuilder& b) {
+        for (const auto& r : reads) b.read(r.second, graph::Use::SampledRayTracing);
+        b.write(out, graph::Use::StorageWriteRayTracing);
+        b.sideEffect();
+      },
+      [reads, out, outBinding, &in, &pipe](graph::PassContext& pc) {
+        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.handle());
+        rhi::DescriptorWriter w;
+        w.uniformBuffer(0, in.constants).accelerationStructure(1, in.scene.tlas.handle());
+        for (const auto& r : reads) w.sampledImage(r.first, pc.image(r.second).view(), in.nearest.handle());
+        w.storageImage(outBinding, pc.image(out).view()).push(pc.cmd, pipe);
+        bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.layout());
+        pipe.trace(pc.cmd, in.size.width, in.size.height);
+      });
+  return out;
+}
 }  // namespace
 
 void traceRawPrimary(graph::RenderGraph& graph, const FrameInputs& in, const RawRayPipelines& raw) {
@@ -60,6 +92,19 @@ void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBu
         bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.layout());
         pipe.trace(pc.cmd, in.size.width, in.size.height, lights);
       });
+}
+
+RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, bool manyLights,
+                            const RawRayPipelines& raw) {
+  RawTwinImages t;
+  t.ao = traceTwin(graph, in, "raw-rt-ao", "raw-ao", {{2, gb.depth}, {3, gb.normals}}, 4, raw.ao);
+  if (manyLights)
+    t.direct = traceTwin(graph, in, "raw-rt-direct", "raw-direct", {{2, gb.depth}, {3, gb.normals}}, 4, raw.direct);
+  t.indirect = traceTwin(graph, in, "raw-rt-indirect", "raw-indirect", {{2, gb.depth}, {3, gb.normals}}, 4, raw.indirect);
+  t.specular = traceTwin(graph, in, "raw-rt-specular", "raw-specular",
+                         {{2, gb.depth}, {3, gb.normals}, {4, gb.albedo}, {5, gb.material}, {7, gb.emissive}}, 6,
+                         raw.specular);
+  return t;
 }
 
 }  // namespace rayster::render

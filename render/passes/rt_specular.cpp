@@ -1,5 +1,6 @@
 // Pass 4: ray-traced reflections and refractions (the raygen bounce loop); denoised by SVGF
-// (denoise_svgf.cpp).
+// (denoise_svgf.cpp). Rough glossy reflections trace half the pixels per frame in a checkerboard
+// (lib/specular_weight.glsl); "rt-specular-fill" fills the other half from their neighbours, in place.
 #include "render/gpu_scene.h"
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
@@ -32,6 +33,24 @@ graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& i
             .push(pc.cmd, pipe);
         bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.layout());
         pipe.trace(pc.cmd, in.size.width, in.size.height);
+      });
+  graph.addPass(
+      "rt-specular-fill",
+      [&](graph::PassBuilder& b) {
+        b.read(gb.depth, graph::Use::SampledCompute);
+        b.read(gb.material, graph::Use::SampledCompute);
+        b.write(out, graph::Use::StorageReadWriteCompute);
+      },
+      [gb, out, &in](graph::PassContext& pc) {
+        const rhi::Pipeline& pipe = in.pipelines.specularFill;
+        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
+        rhi::DescriptorWriter()
+            .uniformBuffer(0, in.constants)
+            .storageImage(1, pc.image(out).view())
+            .sampledImage(2, pc.image(gb.depth).view(), in.nearest.handle())
+            .sampledImage(3, pc.image(gb.material).view(), in.nearest.handle())
+            .push(pc.cmd, pipe);
+        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
       });
   return out;
 }

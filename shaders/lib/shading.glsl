@@ -6,24 +6,7 @@
 #ifndef RAYSTER_SHADING_GLSL
 #define RAYSTER_SHADING_GLSL
 
-// Hits of the bounce loop this smooth, and all transmissive ones, continue the specular path;
-// rougher hits end it, shaded here.
-const float kMirrorRoughness = 0.1;
-// First surfaces rougher than FrameConstants::glossyThreshold fade from traced glossy reflections to
-// the environment approximation over this much roughness, so no seam shows (TECHNIQUES.md §11).
-const float kGlossyBlend = 0.1;
-
-bool tracedSpecular(float roughness, float transmission) {
-  return roughness <= kMirrorRoughness || transmission > 0.0;
-}
-
-// How much of a G-buffer surface's specular light the specular pass traces (mirror, glass, glossy:
-// 1; past the glossy threshold it fades to 0); the rest comes from light sources and the
-// environment approximation.
-float tracedSpecularWeight(float roughness, float transmission) {
-  if (transmission > 0.0 || roughness <= frame.mirrorRoughness) return 1.0;
-  return 1.0 - clamp((roughness - frame.glossyThreshold) / kGlossyBlend, 0.0, 1.0);
-}
+#include "lib/specular_weight.glsl"
 
 struct ShadingInput {
   vec3 p;          // position
@@ -78,11 +61,11 @@ vec3 shadeLight(ShadingInput s, ShadingTerms t, uint i, inout uint rng) {
   return f * incident * visibility;
 }
 
-// Direct light from every light, or (frame.manyLights) from one light picked by importance and
-// divided by the probability of the pick (lib/light_select.glsl).
-vec3 shadeDirect(ShadingInput s, ShadingTerms t, inout uint rng) {
+// Direct light from every light, or (`onePick`) from one light picked by importance and divided by
+// the probability of the pick (lib/light_select.glsl): one shadow ray whatever the light count.
+vec3 shadeDirect(ShadingInput s, ShadingTerms t, bool onePick, inout uint rng) {
   vec3 radiance = vec3(0.0);
-  if (frame.manyLights != 0u) {
+  if (onePick) {
     float invPdf;
     uint i = selectLight(s.p, s.n, rng, invPdf);
     if (i < frame.lightCount) radiance = shadeLight(s, t, i, rng) * invPdf;
@@ -91,10 +74,15 @@ vec3 shadeDirect(ShadingInput s, ShadingTerms t, inout uint rng) {
   }
   return radiance;
 }
+// One pick in many-light mode (frame.manyLights), else every light.
+vec3 shadeDirect(ShadingInput s, ShadingTerms t, inout uint rng) {
+  return shadeDirect(s, t, frame.manyLights != 0u, rng);
+}
 
 // Everything at s. `direct`: false when the caller adds direct light itself (the lighting pass in
 // many-light mode reads it from the denoised stochastic direct-light image).
-vec3 shadeSurface(ShadingInput s, bool direct, inout uint rng) {
+// `onePick`: direct light from one importance-picked light (shadeDirect()).
+vec3 shadeSurface(ShadingInput s, bool direct, bool onePick, inout uint rng) {
   ShadingTerms t = shadingTerms(s);
   SurfaceBsdf bsdf = t.bsdf;
   const float w = t.w;
@@ -104,7 +92,7 @@ vec3 shadeSurface(ShadingInput s, bool direct, inout uint rng) {
   // Uniform ambient radiance stands in for indirect light: the traced indirect replaces its diffuse part.
   vec3 ambientReflectance = (s.useIndirect ? vec3(0.0) : bsdf.diffuse) + (1.0 - w) * bsdf.f0;
   vec3 radiance = s.emissive + frame.ambient.rgb * ambientReflectance * occlusion;
-  if (direct) radiance += shadeDirect(s, t, rng);
+  if (direct) radiance += shadeDirect(s, t, onePick, rng);
   // Diffuse: from the traced indirect rays (their misses see the environment, so the SH term would
   // count it twice), else the SH irradiance scaled by AO. Specular (the untraced share) along the
   // mirror direction, blurred towards the irradiance as roughness grows, scaled by AO.
@@ -120,6 +108,10 @@ vec3 shadeSurface(ShadingInput s, bool direct, inout uint rng) {
     }
   }
   return radiance;
+}
+
+vec3 shadeSurface(ShadingInput s, bool direct, inout uint rng) {
+  return shadeSurface(s, direct, frame.manyLights != 0u, rng);
 }
 
 #endif

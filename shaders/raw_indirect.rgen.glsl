@@ -1,0 +1,52 @@
+#version 460
+#extension GL_EXT_ray_tracing : require
+#include "lib/common.glsl"
+#include "lib/frame.glsl"
+#include "lib/lights.glsl"
+#include "lib/light_select.glsl"
+#include "lib/light_ray.glsl"
+
+// Raw ray rate of rt-indirect (rayster bench --raw-rays). Replayed exactly: the bounce ray
+// (lib/indirect_ray.glsl, same random stream). Approximated: its shadow ray. The twin's closest hit
+// (raw_t.rchit) returns only the hit distance, so the shading point is origin + t·dir and, lacking
+// the hit's normals, the light is picked (selectLight) and the "below the surface" test made with
+// the normal facing the bounce ray's origin (−dir); the shadow ray (lib/light_ray.glsl, same
+// offset) then goes from the same point to the same kind of light sample, so its length and
+// coherence match, though not its exact direction. Rays are traced opaque with trivial misses.
+// Output: 0 where no bounce ray is traced, 0.5 where it misses, 1 where it hits.
+layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
+layout(set = 0, binding = 2) uniform sampler2D depthTex;
+layout(set = 0, binding = 3) uniform sampler2D normalTex;
+layout(set = 0, binding = 4, r16f) uniform writeonly image2D outHit;
+
+layout(location = 0) rayPayloadEXT uint hitT;
+layout(location = 1) rayPayloadEXT uint visible;
+
+#include "lib/indirect_ray.glsl"
+
+void main() {
+  ivec2 px = ivec2(gl_LaunchIDEXT.xy);
+  vec3 origin, dir;
+  vec4 value;
+  uint rng;
+  float result = 0.0;
+  if (indirectRay(px, origin, dir, value, rng)) {
+    hitT = floatBitsToUint(-1.0);
+    traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+    float t = uintBitsToFloat(hitT);
+    result = t < 0.0 ? 0.5 : 1.0;
+    if (t >= 0.0) {
+      vec3 p = origin + t * dir;
+      float invPdf;
+      uint i = selectLight(p, -dir, rng, invPdf);
+      vec3 shadowOrigin, shadowDir;
+      float tMax;
+      if (i < frame.lightCount && lightShadowRay(i, p, -dir, hitRayOffset(p), rng, shadowOrigin, shadowDir, tMax)) {
+        visible = 0u;
+        traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT,
+                    kMaskCastsShadow, 0, 0, 1, shadowOrigin, 0.0, shadowDir, tMax, 1);
+      }
+    }
+  }
+  imageStore(outHit, px, vec4(result));
+}
