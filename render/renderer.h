@@ -21,6 +21,8 @@ class Image;
 
 namespace rayster::render {
 
+struct GpuScene;
+
 enum class Primary { Raster, Traced, Auto };
 const char* primaryName(Primary p);
 
@@ -182,6 +184,9 @@ class Renderer {
   // TRANSFER_SRC_OPTIMAL layout, readable by the next submission on the queue.
   const rhi::Image& outputImage() const;
   uint64_t deviceBytesUsed() const;
+  // The scene as uploaded, with its draws and the culling state of the last frame (tests read the
+  // per-draw visibility through render/passes/cull.h).
+  const GpuScene& gpuScene() const;
   // The scene's lights were edited in place (same number): uploads them again. The next frame
   // should be a cut, or the denoisers' histories show the old lighting for a while.
   void refreshLights();

@@ -3,10 +3,12 @@
 #include "lib/frame.glsl"
 #include "lib/hiz.glsl"
 
-// GPU culling (TECHNIQUES.md §20): one invocation per draw. A draw whose object-space box lies
-// wholly outside one clip plane is dropped, and so is one wholly behind the depth pyramid when the
-// pyramid holds this very view; the rest are appended to their list (triangles or spheres) as a
-// VkDrawIndirectCommand plus the DrawRecord row gl_DrawID finds them by.
+// Two-phase GPU culling (TECHNIQUES.md §20, render/passes/cull.h): one invocation per draw, run
+// twice a frame. A draw whose object-space box lies wholly outside one clip plane is dropped (and
+// marked invisible). The early phase appends the rest that were visible last frame; the late phase
+// tests every frustum-visible draw against the pyramid of the early phase's depth, records the
+// result as next frame's visibility, and appends those visible now that the early phase skipped.
+// Each appended draw becomes a VkDrawIndirectCommand plus the DrawRecord row gl_DrawID finds it by.
 layout(local_size_x = kCullGroupSize) in;
 layout(push_constant, scalar) uniform Push { CullPush pc; };
 
@@ -20,6 +22,7 @@ layout(buffer_reference, scalar) readonly buffer DrawRecords { DrawRecord d[]; }
 layout(buffer_reference, scalar) writeonly buffer DrawCommands { DrawCommand c[]; };
 layout(buffer_reference, scalar) writeonly buffer DrawIds { uint i[]; };
 layout(buffer_reference, scalar) buffer DrawCounts { uint n[]; };
+layout(buffer_reference, scalar) buffer DrawVisibility { uint v[]; };
 
 // The 8 corners against the planes of the clip volume, in homogeneous form (-w <= x, y <= w,
 // 0 <= z <= w with reversed Z: near at depth 1), which stays exact for corners behind the eye. The
@@ -36,17 +39,16 @@ bool outsideFrustum(mat4 clipFromObject, vec3 lo, vec3 hi) {
   return allOutside != 0u;
 }
 
-// Occlusion against the previous frame's depth pyramid, used only when that frame saw the same
-// view (equal unjittered clipFromWorld and size; the host also requires a static scene without
-// stochastic coverage): then its depth is this frame's up to the sub-pixel jitter, which the
-// one-pixel margin covers, and the test is exact — no popping. A moving camera culls by frustum
-// only (the two-phase scheme of §20 would lift that).
+// Occlusion against this frame's pyramid of the early phase's depth. That depth was rasterised
+// with this frame's jittered clipFromWorld, the matrix the box is projected with here, so no jitter
+// margin is needed; and it is a subset of the frame's final depth, so a box behind it stays hidden:
+// no popping. The box's screen rectangle (grown by a pixel for rounding) is looked up at the finest
+// level where it spans at most 2 × 2 texels, all four read; the box is hidden when its nearest depth
+// (reversed Z: the largest) lies behind the farthest depth there.
 bool occluded(mat4 clipFromObject, vec3 lo, vec3 hi) {
   Hiz hiz = Hiz(pc.hiz);
-  if (hiz.h.valid == 0u || hiz.h.size != frame.size || hiz.h.clipFromWorld != frame.unjitteredClipFromWorld)
-    return false;
   vec2 ndcMin = vec2(1e30), ndcMax = vec2(-1e30);
-  float nearest = 0.0;  // reversed Z: the box's largest depth
+  float nearest = 0.0;
   for (uint k = 0u; k < 8u; ++k) {
     vec3 p = vec3((k & 1u) != 0u ? hi.x : lo.x, (k & 2u) != 0u ? hi.y : lo.y, (k & 4u) != 0u ? hi.z : lo.z);
     vec4 c = clipFromObject * vec4(p, 1.0);
@@ -60,9 +62,9 @@ bool occluded(mat4 clipFromObject, vec3 lo, vec3 hi) {
   ivec2 last = ivec2(frame.size) - 1;
   ivec2 p0 = clamp(ivec2(floor((ndcMin * 0.5 + 0.5) * vec2(frame.size))) - 1, ivec2(0), last);
   ivec2 p1 = clamp(ivec2(floor((ndcMax * 0.5 + 0.5) * vec2(frame.size))) + 1, ivec2(0), last);
-  // The finest level where the rectangle spans at most 2 × 2 texels; read all four.
+  uint levels = hizLevels(frame.size);
   uint level = 0u;
-  while (level + 1u < hiz.h.levels && any(greaterThan((p1 >> level) - (p0 >> level), ivec2(1)))) ++level;
+  while (level + 1u < levels && any(greaterThan((p1 >> level) - (p0 >> level), ivec2(1)))) ++level;
   uvec2 size = hizLevelSize(frame.size, level);
   uint offset = hizLevelOffset(frame.size, level);
   uvec2 t0 = uvec2(p0 >> level), t1 = uvec2(p1 >> level);
@@ -75,14 +77,26 @@ void main() {
   uint id = gl_GlobalInvocationID.x;
   if (id >= pc.drawCount) return;
   DrawRecord d = DrawRecords(pc.records).d[id];
-  if (pc.flags != 0u) {
+  bool late = (pc.flags & kCullLate) != 0u;
+  if ((pc.flags & kCullFrustum) != 0u) {
+    DrawVisibility visibility = DrawVisibility(pc.visibility);
     InstanceRecord inst = Instances(frame.instances).i[d.instance];
     mat4 clipFromObject = frame.clipFromWorld * inst.worldFromObject;
-    if ((pc.flags & kCullFrustum) != 0u && outsideFrustum(clipFromObject, d.aabbMin, d.aabbMax)) return;
-    if ((pc.flags & kCullOcclusion) != 0u && occluded(clipFromObject, d.aabbMin, d.aabbMax)) return;
+    if (outsideFrustum(clipFromObject, d.aabbMin, d.aabbMax)) {
+      if (!late) visibility.v[id] = 0u;
+      return;
+    }
+    bool drawnEarly = visibility.v[id] != 0u;  // the early phase leaves frustum-visible rows alone
+    if (late) {
+      bool visible = !occluded(clipFromObject, d.aabbMin, d.aabbMax);
+      visibility.v[id] = visible ? 1u : 0u;
+      if (!visible || drawnEarly) return;
+    } else if (!drawnEarly) {
+      return;  // left to the late phase
+    }
   }
   bool spheres = (d.flags & kDrawSpheres) != 0u;
-  uint list = spheres ? 1u : 0u;
+  uint list = (late ? 2u : 0u) + (spheres ? 1u : 0u);
   uint slot = atomicAdd(DrawCounts(pc.counts).n[list], 1u);
   // Sphere sets draw one 36-vertex box per sphere (instances); triangles their index count.
   DrawCommand command = DrawCommand(d.count, 1u, 0u, 0u);

@@ -3,9 +3,10 @@
 #include "lib/frame.glsl"
 #include "lib/hiz.glsl"
 
-// One level of the depth pyramid: level 0 copies the G-buffer depth, level k takes the MIN of the
-// 2 × 2 texels of level k − 1 it covers (reversed Z: the farthest depth, so a tile's value is never
-// nearer than any pixel under it). Never bilinear (TECHNIQUES.md §20).
+// One level of the depth pyramid: level 0 copies the G-buffer depth of the early phase (this
+// frame's view and jitter), level k takes the MIN of the 2 × 2 texels of level k − 1 it covers
+// (reversed Z: the farthest depth, so a tile's value is never nearer than any pixel under it).
+// Never bilinear (TECHNIQUES.md §20).
 layout(local_size_x = kHizGroupSize, local_size_y = kHizGroupSize) in;
 layout(push_constant, scalar) uniform Push { HizPush pc; };
 layout(set = 0, binding = 1) uniform sampler2D depthImage;
@@ -15,12 +16,6 @@ void main() {
   uvec2 size = frame.size;
   uvec2 s = hizLevelSize(size, pc.level);
   uvec2 p = gl_GlobalInvocationID.xy;
-  if (pc.level == 0u && p == uvec2(0u)) {
-    hiz.h.clipFromWorld = frame.unjitteredClipFromWorld;
-    hiz.h.size = size;
-    hiz.h.levels = hizLevels(size);
-    hiz.h.valid = 1u;
-  }
   if (any(greaterThanEqual(p, s))) return;
   float depth;
   if (pc.level == 0u) {

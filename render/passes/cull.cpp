@@ -1,4 +1,4 @@
-// GPU frustum culling into indirect draw lists (render/passes/cull.h).
+// Two-phase GPU culling into indirect draw lists (render/passes/cull.h).
 #include "render/passes/cull.h"
 
 #include <algorithm>
@@ -12,22 +12,29 @@
 
 namespace rayster::render {
 
+namespace {
+constexpr VkDeviceSize kCountBytes = gpu::kCullLists * sizeof(uint32_t);
+}
+
 std::shared_ptr<CullBuffers> createCullBuffers(rhi::Context& ctx, uint32_t drawCount) {
   auto c = std::make_shared<CullBuffers>();
   c->drawCount = drawCount;
   c->ctx = &ctx;
-  const VkDeviceSize slots = 2 * VkDeviceSize(std::max(drawCount, 1u));
+  const VkDeviceSize rows = std::max(drawCount, 1u);
+  const VkDeviceSize slots = gpu::kCullLists * rows;
   constexpr VkBufferUsageFlags kIndirect = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+  constexpr VkBufferUsageFlags kCopied =
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
   c->commands =
       rhi::Buffer(ctx, slots * sizeof(VkDrawIndirectCommand), kIndirect, rhi::MemoryUsage::GpuOnly, "cull-commands");
   c->drawIds = rhi::Buffer(ctx, slots * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, rhi::MemoryUsage::GpuOnly,
                            "cull-draw-ids");
-  c->counts = rhi::Buffer(ctx, 2 * sizeof(uint32_t),
-                          kIndirect | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                          rhi::MemoryUsage::GpuOnly, "cull-counts");
-  c->readback = rhi::Buffer(ctx, 2 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
-                            "cull-readback");
-  std::memset(c->readback.mapped(), 0, 2 * sizeof(uint32_t));
+  c->counts = rhi::Buffer(ctx, kCountBytes, kIndirect | kCopied, rhi::MemoryUsage::GpuOnly, "cull-counts");
+  c->visibility = rhi::Buffer(ctx, rows * sizeof(uint32_t), kCopied, rhi::MemoryUsage::GpuOnly, "cull-visibility");
+  const VkDeviceSize readbackBytes = kCountBytes + rows * sizeof(uint32_t);
+  c->readback =
+      rhi::Buffer(ctx, readbackBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "cull-readback");
+  std::memset(c->readback.mapped(), 0, readbackBytes);
   return c;
 }
 
@@ -43,66 +50,85 @@ uint32_t hizFloats(VkExtent2D size) {
   }
 }
 
-// A new resolution gets a new, invalid (zeroed header) pyramid.
+// The pyramid is rebuilt every frame before it is read, so only its size matters.
 void ensureHiz(CullBuffers& c, VkExtent2D size) {
   if (c.hiz && c.hizSize.width == size.width && c.hizSize.height == size.height) return;
-  c.hiz = rhi::Buffer(*c.ctx, sizeof(gpu::HizHeader) + sizeof(float) * VkDeviceSize(hizFloats(size)),
-                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::GpuOnly,
-                      "hiz");
+  c.hiz = rhi::Buffer(*c.ctx, sizeof(float) * VkDeviceSize(hizFloats(size)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                      rhi::MemoryUsage::GpuOnly, "hiz");
   c.hizState = {};
   c.hizSize = size;
-  c.hizFresh = true;
+}
+
+void dispatchCull(graph::PassContext& pc, const FrameInputs& in, const CulledDraws& out, uint32_t flags) {
+  const CullBuffers& c = *in.scene.cull;
+  const rhi::Pipeline& pipe = in.pipelines.cull;
+  vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
+  rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
+  const gpu::CullPush push{in.scene.drawRecords.address(),
+                           pc.buffer(out.commands).address(),
+                           pc.buffer(out.drawIds).address(),
+                           pc.buffer(out.counts).address(),
+                           pc.buffer(out.visibility).address(),
+                           out.hiz.valid() ? pc.buffer(out.hiz).address() : 0,
+                           c.drawCount,
+                           flags};
+  vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), &push);
+  vkCmdDispatch(pc.cmd, (c.drawCount + gpu::kCullGroupSize - 1) / gpu::kCullGroupSize, 1, 1);
 }
 
 }  // namespace
 
 CulledDraws cullDraws(graph::RenderGraph& graph, const FrameInputs& in) {
   CullBuffers& c = *in.scene.cull;
-  ensureHiz(c, in.size);
   CulledDraws out;
-  out.hiz = graph.importBuffer("hiz", &c.hiz, &c.hizState);
+  if (c.enabled) {
+    ensureHiz(c, in.size);
+    out.hiz = graph.importBuffer("hiz", &c.hiz, &c.hizState);
+  }
   out.commands = graph.importBuffer("cull-commands", &c.commands, &c.commandsState);
   out.drawIds = graph.importBuffer("cull-draw-ids", &c.drawIds, &c.drawIdsState);
   out.counts = graph.importBuffer("cull-counts", &c.counts, &c.countsState);
+  out.visibility = graph.importBuffer("cull-visibility", &c.visibility, &c.visibilityState);
+  const bool fresh = c.visibilityFresh;
+  c.visibilityFresh = false;
   graph.addPass(
       "cull-clear",
       [&](graph::PassBuilder& b) {
         b.write(out.counts, graph::Use::TransferDst);
-        if (c.hizFresh) b.write(out.hiz, graph::Use::TransferDst);
+        if (fresh) b.write(out.visibility, graph::Use::TransferDst);
       },
-      [out, fresh = c.hizFresh](graph::PassContext& pc) {
+      [out, fresh](graph::PassContext& pc) {
         vkCmdFillBuffer(pc.cmd, pc.buffer(out.counts).handle(), 0, VK_WHOLE_SIZE, 0);
-        if (fresh) vkCmdFillBuffer(pc.cmd, pc.buffer(out.hiz).handle(), 0, sizeof(gpu::HizHeader), 0);  // valid = 0
+        // Everything "visible last frame": the first frame draws the frustum-visible set early, so
+        // its late phase already records true visibility.
+        if (fresh) vkCmdFillBuffer(pc.cmd, pc.buffer(out.visibility).handle(), 0, VK_WHOLE_SIZE, 1u);
       });
-  c.hizFresh = false;
-  // Occlusion only where last frame's depth is this frame's (see cull.h).
-  // Where instances can move (animated, or edited in the viewer) last frame's depth no longer
-  // stands for this frame's, so only frustum culling applies.
-  const bool occlusion = !in.scene.instancesDynamic && !in.scene.anyAlphaTested;
-  const uint32_t flags = c.enabled ? gpu::kCullFrustum | (occlusion ? gpu::kCullOcclusion : 0u) : 0u;
+  const uint32_t flags = c.enabled ? gpu::kCullFrustum : 0u;
   graph.addPass(
-      "cull",
+      c.enabled ? "cull-early" : "cull",
       [&](graph::PassBuilder& b) {
         b.write(out.commands, graph::Use::StorageWriteCompute);
         b.write(out.drawIds, graph::Use::StorageWriteCompute);
         b.write(out.counts, graph::Use::StorageReadWriteCompute);  // atomicAdd
-        b.read(out.hiz, graph::Use::StorageReadCompute);
+        if (flags != 0) b.write(out.visibility, graph::Use::StorageReadWriteCompute);
       },
-      [out, flags, &in, &c](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = in.pipelines.cull;
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
-        const gpu::CullPush push{in.scene.drawRecords.address(),
-                                 pc.buffer(out.commands).address(),
-                                 pc.buffer(out.drawIds).address(),
-                                 pc.buffer(out.counts).address(),
-                                 pc.buffer(out.hiz).address(),
-                                 c.drawCount,
-                                 flags};
-        vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), &push);
-        vkCmdDispatch(pc.cmd, (c.drawCount + gpu::kCullGroupSize - 1) / gpu::kCullGroupSize, 1, 1);
-      });
+      [out, flags, &in](graph::PassContext& pc) { dispatchCull(pc, in, out, flags); });
   return out;
+}
+
+void cullLate(graph::RenderGraph& graph, const FrameInputs& in, const CulledDraws& culled) {
+  graph.addPass(
+      "cull-late",
+      [&](graph::PassBuilder& b) {
+        b.write(culled.commands, graph::Use::StorageWriteCompute);
+        b.write(culled.drawIds, graph::Use::StorageWriteCompute);
+        b.write(culled.counts, graph::Use::StorageReadWriteCompute);
+        b.write(culled.visibility, graph::Use::StorageReadWriteCompute);
+        b.read(culled.hiz, graph::Use::StorageReadCompute);
+      },
+      [culled, &in](graph::PassContext& pc) {
+        dispatchCull(pc, in, culled, gpu::kCullFrustum | gpu::kCullLate);
+      });
 }
 
 void buildDepthPyramid(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle depth,
@@ -113,7 +139,6 @@ void buildDepthPyramid(graph::RenderGraph& graph, const FrameInputs& in, graph::
       [&](graph::PassBuilder& b) {
         b.read(depth, graph::Use::SampledCompute);
         b.write(hiz, graph::Use::StorageReadWriteCompute);
-        b.sideEffect();  // read by the next frame's cull pass
       },
       [depth, hiz, &in](graph::PassContext& pc) {
         const rhi::Pipeline& pipe = in.pipelines.hiz;
@@ -155,11 +180,14 @@ void readbackCullStats(graph::RenderGraph& graph, const FrameInputs& in, const C
       "readback-cull",
       [&](graph::PassBuilder& b) {
         b.read(culled.counts, graph::Use::TransferSrc);
+        b.read(culled.visibility, graph::Use::TransferSrc);
         b.write(readback, graph::Use::TransferDst);
       },
-      [culled, readback](graph::PassContext& pc) {
-        const VkBufferCopy region{0, 0, 2 * sizeof(uint32_t)};
-        vkCmdCopyBuffer(pc.cmd, pc.buffer(culled.counts).handle(), pc.buffer(readback).handle(), 1, &region);
+      [culled, readback, rows = std::max(c.drawCount, 1u)](graph::PassContext& pc) {
+        const VkBufferCopy counts{0, 0, kCountBytes};
+        vkCmdCopyBuffer(pc.cmd, pc.buffer(culled.counts).handle(), pc.buffer(readback).handle(), 1, &counts);
+        const VkBufferCopy visibility{0, kCountBytes, rows * sizeof(uint32_t)};
+        vkCmdCopyBuffer(pc.cmd, pc.buffer(culled.visibility).handle(), pc.buffer(readback).handle(), 1, &visibility);
       });
   graph.addPass(
       "host-visible-cull",
@@ -170,10 +198,25 @@ void readbackCullStats(graph::RenderGraph& graph, const FrameInputs& in, const C
       [](graph::PassContext&) {});
 }
 
-uint32_t visibleDraws(const GpuScene& scene) {
-  uint32_t n[2];
+CullCounts cullCounts(const GpuScene& scene) {
+  uint32_t n[gpu::kCullLists];
   std::memcpy(n, scene.cull->readback.mapped(), sizeof(n));
-  return n[0] + n[1];
+  return {n[0] + n[1], n[2] + n[3]};
+}
+
+uint32_t visibleDraws(const GpuScene& scene) {
+  const CullCounts n = cullCounts(scene);
+  return n.early + n.late;
+}
+
+std::vector<uint8_t> drawVisibility(const GpuScene& scene) {
+  const CullBuffers& c = *scene.cull;
+  std::vector<uint32_t> rows(c.drawCount);
+  std::memcpy(rows.data(), static_cast<const uint8_t*>(c.readback.mapped()) + kCountBytes,
+              rows.size() * sizeof(uint32_t));
+  std::vector<uint8_t> out(rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) out[i] = rows[i] != 0 ? 1 : 0;
+  return out;
 }
 
 }  // namespace rayster::render

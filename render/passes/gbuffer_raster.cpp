@@ -40,11 +40,15 @@ void bindTextures(VkCommandBuffer cmd, const FrameInputs& in, VkPipelineBindPoin
   vkCmdBindDescriptorSets(cmd, bindPoint, layout, 1, 1, &in.textures, 0, nullptr);
 }
 
-GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
-  GBuffer gb = createGBufferTargets(graph, in.size, false);
-  const CulledDraws culled = cullDraws(graph, in);
+namespace {
+
+// Draws one phase's two lists (render/passes/cull.h) into the G-buffer: the early phase clears the
+// targets, the late one loads them and adds what the early depth did not hide.
+void drawGBuffer(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, const CulledDraws& culled,
+                 CullPhase phase) {
+  const bool late = phase == CullPhase::Late;
   graph.addPass(
-      "gbuffer-raster",
+      late ? "gbuffer-raster-late" : "gbuffer-raster",
       [&](graph::PassBuilder& b) {
         b.write(gb.depth, graph::Use::DepthAttachment);
         for (auto h : {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion})
@@ -53,7 +57,8 @@ GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
         b.read(culled.counts, graph::Use::IndirectRead);
         b.read(culled.drawIds, graph::Use::VertexShaderRead);
       },
-      [gb, culled, &in](graph::PassContext& pc) {
+      [gb, culled, late, &in](graph::PassContext& pc) {
+        const VkAttachmentLoadOp load = late ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
         constexpr int kTargets = 6;
         VkRenderingAttachmentInfo color[kTargets];
         graph::ImageHandle targets[kTargets] = {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion};
@@ -61,7 +66,7 @@ GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
           color[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
           color[i].imageView = pc.image(targets[i]).view();
           color[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-          color[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+          color[i].loadOp = load;
           color[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
           color[i].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
         }
@@ -69,7 +74,7 @@ GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
         VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         depth.imageView = pc.image(gb.depth).view();
         depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-        depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        depth.loadOp = load;
         depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
         depth.clearValue.depthStencil = {0.0f, 0};  // reversed Z: the far plane is 0
         VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
@@ -84,10 +89,11 @@ GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
         vkCmdSetViewport(pc.cmd, 0, 1, &vp);
         vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
         // Triangles first, then sphere impostors (their bounding cubes, one instance per sphere):
-        // the two lists cullDraws() compacted, each as long as its count says.
+        // the phase's two lists, each as long as its count says.
         const uint32_t maxDraws = in.scene.cull->drawCount;
-        for (uint32_t list : {0u, 1u}) {
-          const rhi::Pipeline& pipe = list == 1 ? in.pipelines.gbufferSpheres : in.pipelines.gbufferRaster;
+        for (uint32_t type : {0u, 1u}) {
+          const uint32_t list = (late ? 2u : 0u) + type;
+          const rhi::Pipeline& pipe = type == 1 ? in.pipelines.gbufferSpheres : in.pipelines.gbufferRaster;
           vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.handle());
           rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
           bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.layout());
@@ -100,7 +106,21 @@ GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
         }
         vkCmdEndRendering(pc.cmd);
       });
-  buildDepthPyramid(graph, in, gb.depth, culled);
+}
+
+}  // namespace
+
+// Culling on: early cull, early draw (clear), depth pyramid, late cull, late draw (load). Off: one
+// cull pass that keeps every draw and one draw pass, as before culling existed.
+GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
+  GBuffer gb = createGBufferTargets(graph, in.size, false);
+  const CulledDraws culled = cullDraws(graph, in);
+  drawGBuffer(graph, in, gb, culled, CullPhase::Early);
+  if (in.scene.cull->enabled) {
+    buildDepthPyramid(graph, in, gb.depth, culled);
+    cullLate(graph, in, culled);
+    drawGBuffer(graph, in, gb, culled, CullPhase::Late);
+  }
   readbackCullStats(graph, in, culled);
   return gb;
 }

@@ -1,8 +1,8 @@
-// The depth pyramid's layout (HizHeader in shared/types.h): levels packed after the header.
+// The depth pyramid's layout (shared/types.h): the levels packed one after another, level 0 first.
 #ifndef RAYSTER_HIZ_GLSL
 #define RAYSTER_HIZ_GLSL
 
-layout(buffer_reference, scalar) buffer Hiz { HizHeader h; float d[]; };
+layout(buffer_reference, scalar) buffer Hiz { float d[]; };
 
 uvec2 hizLevelSize(uvec2 size, uint level) { return max((size + (1u << level) - 1u) >> level, uvec2(1u)); }
 

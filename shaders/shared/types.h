@@ -227,31 +227,29 @@ struct DrawRecord {
 };
 
 // CullPush::flags
-RAYSTER_CONST uint kCullFrustum = 1u;
-RAYSTER_CONST uint kCullOcclusion = 2u;  // against the depth pyramid, when it holds this very view
+RAYSTER_CONST uint kCullFrustum = 1u;  // 0 (--culling off): every draw passes, into the early lists
+RAYSTER_CONST uint kCullLate = 2u;     // the late phase: test against this frame's depth pyramid
 
-// cull.comp push constants: the draw records and the two compacted lists it writes (list 0
-// triangles, list 1 spheres; each holds drawCount slots).
+// Two-phase culling (render/passes/cull.h): the early phase appends the frustum-visible draws that
+// were visible last frame, the late phase those the pyramid of the early depth does not hide and
+// the early phase skipped. The indirect lists: early triangles, early spheres, late triangles,
+// late spheres, each with drawCount slots and a count.
+RAYSTER_CONST uint kCullLists = 4u;
 struct CullPush {
-  uint64_t records;   // DrawRecord[drawCount]
-  uint64_t commands;  // VkDrawIndirectCommand[2 * drawCount]
-  uint64_t drawIds;   // uint[2 * drawCount]: the DrawRecord row of each command
-  uint64_t counts;    // uint[2]: commands per list (the draw-count buffer)
-  uint64_t hiz;       // HizHeader, then the levels' float depths
+  uint64_t records;     // DrawRecord[drawCount]
+  uint64_t commands;    // VkDrawIndirectCommand[kCullLists * drawCount]
+  uint64_t drawIds;     // uint[kCullLists * drawCount]: the DrawRecord row of each command
+  uint64_t counts;      // uint[kCullLists]: commands per list (the draw-count buffer)
+  uint64_t visibility;  // uint[drawCount]: 1 if visible in the last late phase (kept across frames)
+  uint64_t hiz;         // the depth pyramid's float depths, level 0 first
   uint drawCount;
-  uint flags;         // kCull*; 0 (--culling off): every draw passes
+  uint flags;  // kCull*
 };
 
-// The depth pyramid (render/passes/cull.cpp): a header, then level 0 (the depth image's size) to
-// the 1 × 1 level, each ceil(previous / 2) and row-major, holding the MIN depth of the texels it
-// covers (reversed Z: the farthest). Kept in a buffer, so no per-level image views are needed.
+// The depth pyramid (render/passes/cull.cpp): level 0 (the depth image's size) to the 1 × 1 level,
+// each ceil(previous / 2) and row-major, holding the MIN depth of the texels it covers (reversed Z:
+// the farthest). Kept in a buffer, so no per-level image views are needed.
 RAYSTER_CONST uint kHizGroupSize = 8u;
-struct HizHeader {
-  mat4 clipFromWorld;  // unjittered, of the frame whose depth it holds
-  uvec2 size;          // of level 0
-  uint levels;
-  uint valid;          // 0 until built
-};
 
 // hiz.comp push constants: one dispatch per level.
 struct HizPush {
@@ -285,8 +283,7 @@ static_assert(offsetof(FrameConstants, maxSpecularBounces) == 628);
 static_assert(sizeof(FrameConstants) == 632);
 static_assert(sizeof(DrawRecord) == 40);
 static_assert(offsetof(DrawRecord, aabbMin) == 16);
-static_assert(sizeof(CullPush) == 48);
-static_assert(sizeof(HizHeader) == 80);
+static_assert(sizeof(CullPush) == 56);
 static_assert(sizeof(HizPush) == 16);
 } // namespace rayster::gpu
 #endif

@@ -1,5 +1,6 @@
-// GPU frustum culling of the raster G-buffer (render/passes/cull.h) through the real binary,
-// validation on: culling never changes a pixel, and it drops what lies outside the view.
+// Two-phase GPU culling of the raster G-buffer (render/passes/cull.h) through the real binary,
+// validation on: culling never changes a pixel, and it drops what lies outside the view or behind
+// other geometry. tests/render/test_culling_reference.cpp checks it against a CPU reference.
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -55,8 +56,9 @@ std::filesystem::path writeTopDownScene(const std::filesystem::path& dir) {
   return file;
 }
 
-// The same grid behind a wall with a small window (as bench/scenes/culling-wall.json): after the
-// first frame the depth pyramid hides everything but what the window shows.
+// The same grid behind a wall with a small window (as bench/scenes/culling-wall.json): from the
+// second frame on only what was visible is drawn early, and the pyramid of that depth hides
+// everything but what the window shows.
 std::filesystem::path writeWallScene(const std::filesystem::path& dir) {
   std::ofstream(dir / "wall.obj") << R"(v -12 0 6.5
 v -0.4 0 6.5
@@ -118,12 +120,12 @@ TEST(Culling, OutOfViewDrawsAreCulled) {
   EXPECT_LE(on.visible, 13) << "most of the grid is outside the view";
 }
 
-TEST(Culling, HiddenDrawsAreCulledOnceThePyramidHoldsTheView) {
+TEST(Culling, HiddenDrawsAreCulledFromTheSecondFrame) {
   auto dir = testDir();
   const std::string scene = writeWallScene(dir).string() + " --mode raster";
   const Culled first = renderCulled(dir, "first", scene + " --frames 1", true);
   EXPECT_EQ(first.total, 66);  // floor, 64 bunnies, wall
-  // The first frame has no pyramid: only the frustum culls (the grid's outer columns).
+  // The first frame draws everything in view early (no visibility yet): only the frustum culls.
   EXPECT_GE(first.visible, 50);
   const Culled on = renderCulled(dir, "wall", scene + " --frames 3", true);
   const Culled off = renderCulled(dir, "wall", scene + " --frames 3", false);
