@@ -23,6 +23,7 @@
 #include "render/passes/cull.h"
 #include "render/passes/denoise.h"
 #include "render/passes/passes.h"
+#include "render/frame_memory.h"
 #include "render/path_tracer.h"
 #include "render/pipelines.h"
 #include "render/raster_frame.h"
@@ -331,6 +332,7 @@ struct Renderer::Impl {
     st.bufferBytes = mem.bytes(rhi::MemoryCategory::Buffer);
     st.accelBytes = mem.bytes(rhi::MemoryCategory::Accel);
     st.hostBytes = mem.bytes(rhi::MemoryCategory::Host);
+    setFrameMemory(st, transients.report());
     st.lights = gpu.lightCount;
     return st;
   }
