@@ -121,7 +121,10 @@ json configResult(const rhi::Context& ctx, const BenchConfig& c, const render::R
                 {"upload_ms", st.uploadMs}};
   j["memory"] = {{"used_bytes", st.deviceBytesUsed}, {"reserved_bytes", st.deviceBytesReserved},
                  {"image_bytes", st.imageBytes},     {"buffer_bytes", st.bufferBytes},
-                 {"accel_bytes", st.accelBytes},     {"host_bytes", st.hostBytes}};
+                 {"accel_bytes", st.accelBytes},     {"host_bytes", st.hostBytes},
+                 {"frame_bytes", st.frameBytes},     {"transient_bytes", st.transientBytes},
+                 {"transient_unaliased_bytes", st.transientUnaliasedBytes},
+                 {"history_bytes", st.historyBytes}};
   return j;
 }
 

@@ -116,6 +116,9 @@ int run(int argc, char** argv) {
                      "builtin:cornell, off otherwise)")
       ->check(CLI::IsMember({"on", "off"}));
   render->add_flag("--timings", ro.printTimings, "Print per-pass GPU times");
+  render->add_flag("--memory-report", ro.memoryReport,
+                   "Print the last frame's images (G-buffer, targets, histories): format, size, bytes, and which "
+                   "transients share memory");
   render->add_option("--aov", ro.aovs,
                      "Also write intermediates as <stem>.<name>.png and .exr: all, or a comma-separated list of "
                      "depth, normal, albedo, material, emissive, shadow-raw, shadow-denoised, reflection-raw, "

@@ -60,7 +60,11 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
                       {"blas_bytes", st.blasBytes},         {"blas_compacted_bytes", st.blasCompactedBytes},
                       {"tlas_bytes", st.tlasBytes},         {"upload_ms", st.uploadMs},
                       {"accel_build_ms", st.accelBuildMs},  {"device_bytes_used", st.deviceBytesUsed},
-                      {"device_bytes_reserved", st.deviceBytesReserved}};
+                      {"device_bytes_reserved", st.deviceBytesReserved},
+                      {"frame_bytes", st.frameBytes},
+                      {"transient_bytes", st.transientBytes},
+                      {"transient_unaliased_bytes", st.transientUnaliasedBytes},
+                      {"history_bytes", st.historyBytes}};
   for (const auto& p : out.passes)
     j["passes"].push_back({{"name", p.name}, {"median_ms", p.medianMs}, {"min_ms", p.minMs}, {"p95_ms", p.p95Ms},
                            {"frames", p.samples}, {"rays", p.rays}});
@@ -181,7 +185,13 @@ int renderCommand(const RenderOptions& o) {
       std::printf("%-20s %10.3f   (%s, %s, primary %s, %ux%u)\n", "frame (GPU)", out->frameMedianMs,
                   (*ctx)->info().name.c_str(), render::modeName(out->modeUsed), render::primaryName(out->primaryUsed),
                   o.settings.width, o.settings.height);
+      const auto& st = out->scene;
+      std::printf("%-20s %10.1f MiB (transients %.1f, %.1f unaliased; histories/outputs %.1f) of %.1f MiB in use\n",
+                  "frame resources", double(st.frameBytes) / (1 << 20), double(st.transientBytes) / (1 << 20),
+                  double(st.transientUnaliasedBytes) / (1 << 20), double(st.historyBytes) / (1 << 20),
+                  double(st.deviceBytesUsed) / (1 << 20));
     }
+    if (o.memoryReport) std::fputs(out->scene.frameMemoryReport.c_str(), stdout);
     if (!o.jsonOutput.empty()) {
       std::string tmp = o.jsonOutput + ".tmp";
       {

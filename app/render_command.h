@@ -13,6 +13,7 @@ struct RenderOptions {
   std::string jsonOutput;
   std::string aovs;  // comma-separated names, or "all"
   bool printTimings = false;
+  bool memoryReport = false;  // --memory-report: the frame's images and their bytes
   bool validation = false;
   bool requireRt = false;  // --require-rt: exit MissingCapability instead of falling back to raster
   bool debugLabels = true;

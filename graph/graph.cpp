@@ -1,16 +1,11 @@
 #include "graph/graph.h"
 
+#include <algorithm>
+
 #include "rhi/commands.h"
 #include "rhi/context.h"
 
 namespace rayster::graph {
-
-rhi::Image& TransientPool::acquire(rhi::Context& ctx, const std::string& name, const rhi::ImageDesc& desc) {
-  auto it = images_.find(name);
-  if (it != images_.end() && it->second.desc() == desc) return it->second;
-  rhi::Image image(ctx, desc, name.c_str());
-  return images_.insert_or_assign(name, std::move(image)).first->second;
-}
 
 ImageHandle PassBuilder::read(ImageHandle image, Use use) {
   RAYSTER_ASSERT(image.valid(), "pass reads an invalid image handle");
@@ -40,7 +35,14 @@ BufferHandle PassBuilder::write(BufferHandle buffer, Use use) {
 
 void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
 
-const rhi::Image& PassContext::image(ImageHandle h) const { return *graph_.images_[h.id].image; }
+const rhi::Image& PassContext::image(ImageHandle h) const {
+  // Transients alias by lifetime: a pass may only touch images it declared (read or write).
+  const auto& accesses = graph_.passes_[pass_].accesses;
+  RAYSTER_ASSERT(std::any_of(accesses.begin(), accesses.end(),
+                             [&](const RenderGraph::Access& a) { return a.isImage && a.resource == h.id; }),
+                 "a pass used an image it did not declare");
+  return *graph_.images_[h.id].image;
+}
 const rhi::Buffer& PassContext::buffer(BufferHandle h) const { return *graph_.buffers_[h.id].buffer; }
 
 ImageHandle RenderGraph::createImage(std::string name, const rhi::ImageDesc& desc) {
@@ -67,13 +69,12 @@ void RenderGraph::addPass(std::string name, const std::function<void(PassBuilder
 }
 
 
-std::vector<PlannedPass> RenderGraph::compile() const {
+std::vector<PlannedPass> RenderGraph::compile(const std::vector<std::vector<uint32_t>>* aliasedBefore) const {
   std::vector<ResourceState> imageStates, bufferStates;
-  return plan(imageStates, bufferStates);
+  return plan(imageStates, bufferStates, aliasedBefore);
 }
 
-std::vector<PlannedPass> RenderGraph::plan(std::vector<ResourceState>& imageStates,
-                                           std::vector<ResourceState>& bufferStates) const {
+std::vector<uint32_t> RenderGraph::livePasses() const {
   // Culling, back to front: a pass lives if it has a side effect, writes an imported resource (its
   // contents outlive the frame), or writes something a live later pass reads.
   std::vector<bool> live(passes_.size(), false);
@@ -92,19 +93,55 @@ std::vector<PlannedPass> RenderGraph::plan(std::vector<ResourceState>& imageStat
     for (const Access& a : p.accesses)
       if (accessInfo(a.use, a.isImage).reads) (a.isImage ? imageNeeded : bufferNeeded)[a.resource] = true;
   }
+  std::vector<uint32_t> order;
+  for (uint32_t i = 0; i < passes_.size(); ++i)
+    if (live[i]) order.push_back(i);
+  return order;
+}
 
+std::vector<RenderGraph::TransientLifetime> RenderGraph::transientLifetimes() const {
+  std::vector<TransientLifetime> out;
+  std::vector<int32_t> slot(images_.size(), -1);
+  const std::vector<uint32_t> order = livePasses();
+  for (uint32_t pos = 0; pos < order.size(); ++pos)
+    for (const Access& a : passes_[order[pos]].accesses) {
+      if (!a.isImage || images_[a.resource].external) continue;
+      if (slot[a.resource] < 0) {
+        slot[a.resource] = int32_t(out.size());
+        out.push_back({a.resource, pos, pos});
+      }
+      out[size_t(slot[a.resource])].last = pos;
+    }
+  return out;
+}
+
+std::vector<PlannedPass> RenderGraph::plan(std::vector<ResourceState>& imageStates,
+                                           std::vector<ResourceState>& bufferStates,
+                                           const std::vector<std::vector<uint32_t>>* aliasedBefore) const {
   // Barriers are derived on copies of the states, so planning never changes the graph: execute()
   // writes the final states back to imported resources once the passes are recorded.
   imageStates.clear();
   bufferStates.clear();
   for (const ImageEntry& e : images_) imageStates.push_back(e.external ? *e.external : ResourceState{});
   for (const BufferEntry& e : buffers_) bufferStates.push_back(e.external ? *e.external : ResourceState{});
+  std::vector<bool> touched(images_.size(), false);
   std::vector<PlannedPass> plan;
-  for (uint32_t i = 0; i < passes_.size(); ++i) {
-    if (!live[i]) continue;
+  for (uint32_t i : livePasses()) {
     PlannedPass pp{i, {}};
     for (const Access& a : passes_[i].accesses) {
       ResourceState& st = a.isImage ? imageStates[a.resource] : bufferStates[a.resource];
+      if (a.isImage && !touched[a.resource]) {
+        touched[a.resource] = true;
+        // An aliased transient starts where the images before it in its memory ended: their last
+        // writes and reads are what its first layout transition (from UNDEFINED) must wait for.
+        if (aliasedBefore && a.resource < aliasedBefore->size())
+          for (uint32_t j : (*aliasedBefore)[a.resource]) {
+            st.writeStages |= imageStates[j].writeStages;
+            st.writeAccess |= imageStates[j].writeAccess;
+            st.readStages |= imageStates[j].readStages;
+            st.contentsValid = false;
+          }
+      }
       if (auto b = transition(st, a.use, a.isImage)) pp.barriers.push_back({a.isImage, a.resource, *b});
     }
     plan.push_back(std::move(pp));
@@ -114,10 +151,26 @@ std::vector<PlannedPass> RenderGraph::plan(std::vector<ResourceState>& imageStat
 
 void RenderGraph::execute(VkCommandBuffer cmd, rhi::TimestampPool* timers) {
   RAYSTER_ASSERT(ctx_ && pool_, "execute() needs a Vulkan context and a transient pool");
-  for (ImageEntry& e : images_)
-    if (!e.image) e.image = &pool_->acquire(*ctx_, e.name, e.desc);
+  // Transients get images (aliased by lifetime) only when a live pass uses them.
+  const std::vector<TransientLifetime> lifetimes = transientLifetimes();
+  const std::vector<uint32_t> order = livePasses();
+  std::vector<TransientRequest> requests;
+  for (const TransientLifetime& t : lifetimes)
+    requests.push_back({images_[t.image].name, images_[t.image].desc, t.first, t.last,
+                        passes_[order[t.first]].name, passes_[order[t.last]].name});
+  std::vector<std::vector<uint32_t>> before;
+  const std::vector<const rhi::Image*> transients = pool_->acquire(*ctx_, requests, before);
+  std::vector<std::vector<uint32_t>> aliasedBefore(images_.size());
+  for (size_t i = 0; i < lifetimes.size(); ++i) {
+    images_[lifetimes[i].image].image = transients[i];
+    for (uint32_t j : before[i]) aliasedBefore[lifetimes[i].image].push_back(lifetimes[j].image);
+  }
+  std::vector<std::pair<std::string, const rhi::Image*>> imported;
+  for (const ImageEntry& e : images_)
+    if (e.external) imported.emplace_back(e.name, e.image);
+  pool_->recordImported(imported);
   std::vector<ResourceState> imageStates, bufferStates;
-  const std::vector<PlannedPass> passes = plan(imageStates, bufferStates);
+  const std::vector<PlannedPass> passes = plan(imageStates, bufferStates, &aliasedBefore);
   for (const PlannedPass& pp : passes) {
     Pass& pass = passes_[pp.pass];
     std::vector<VkImageMemoryBarrier2> imageBarriers;
@@ -157,7 +210,7 @@ void RenderGraph::execute(VkCommandBuffer cmd, rhi::TimestampPool* timers) {
       vkCmdPipelineBarrier2(cmd, &dep);
     }
     uint32_t timer = timers ? timers->begin(cmd, pass.name) : UINT32_MAX;
-    PassContext pc(*this, cmd);
+    PassContext pc(*this, cmd, pp.pass);
     pass.execute(pc);
     if (timers) timers->end(cmd, timer);
     ctx_->endLabel(cmd);

@@ -14,6 +14,7 @@
 #include <volk.h>
 
 #include "graph/resource_state.h"
+#include "graph/transient_pool.h"
 #include "rhi/resources.h"
 
 namespace rayster::rhi {
@@ -30,16 +31,6 @@ struct ImageHandle {
 struct BufferHandle {
   uint32_t id = UINT32_MAX;
   bool valid() const { return id != UINT32_MAX; }
-};
-
-// Keeps transient images alive between frames so a static configuration allocates once.
-class TransientPool {
- public:
-  rhi::Image& acquire(rhi::Context& ctx, const std::string& name, const rhi::ImageDesc& desc);
-  size_t size() const { return images_.size(); }
-
- private:
-  std::map<std::string, rhi::Image> images_;
 };
 
 class RenderGraph;
@@ -68,8 +59,9 @@ class PassContext {
 
  private:
   friend class RenderGraph;
-  explicit PassContext(const RenderGraph& graph, VkCommandBuffer c) : cmd(c), graph_(graph) {}
+  PassContext(const RenderGraph& graph, VkCommandBuffer c, uint32_t pass) : cmd(c), graph_(graph), pass_(pass) {}
   const RenderGraph& graph_;
+  uint32_t pass_;
 };
 
 struct PlannedBarrier {
@@ -96,8 +88,16 @@ class RenderGraph {
   void addPass(std::string name, const std::function<void(PassBuilder&)>& setup, Execute execute);
 
   // Orders, culls and derives barriers; pure (no Vulkan calls, no state changes), so it is
-  // unit-testable and may be called any number of times.
-  std::vector<PlannedPass> compile() const;
+  // unit-testable and may be called any number of times. aliasedBefore (indexed by image id): the
+  // transients whose memory an image reuses; its first barrier then waits for their last accesses
+  // and discards their contents (oldLayout UNDEFINED).
+  std::vector<PlannedPass> compile(const std::vector<std::vector<uint32_t>>* aliasedBefore = nullptr) const;
+  // The transient images live passes use, with the positions (in the live pass order) of their
+  // first and last use: what TransientPool packs. Imported images never alias.
+  struct TransientLifetime {
+    uint32_t image, first, last;
+  };
+  std::vector<TransientLifetime> transientLifetimes() const;
   // Records every live pass into cmd, with its barriers, label and timestamps.
   void execute(VkCommandBuffer cmd, rhi::TimestampPool* timers);
 
@@ -130,8 +130,10 @@ class RenderGraph {
     const rhi::Buffer* buffer = nullptr;
     ResourceState* external = nullptr;
   };
+  std::vector<uint32_t> livePasses() const;  // culling: the passes that run, in order
   // Plans on copies of the resource states and returns the states after the frame.
-  std::vector<PlannedPass> plan(std::vector<ResourceState>& imageStates, std::vector<ResourceState>& bufferStates) const;
+  std::vector<PlannedPass> plan(std::vector<ResourceState>& imageStates, std::vector<ResourceState>& bufferStates,
+                                const std::vector<std::vector<uint32_t>>* aliasedBefore) const;
 
   rhi::Context* ctx_;
   TransientPool* pool_;

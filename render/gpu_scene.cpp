@@ -194,8 +194,15 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   gs.bounds = scene.bounds();
   gs.uploadMs = msSince(t0);
 
+  // The uploads waited for the device: their staging buffers can go, and the blocks they emptied
+  // with them (they would stay reserved for the whole run otherwise).
+  auto releaseStaging = [&ctx] {
+    ctx.collectGarbage();
+    ctx.memory().releaseEmptyBlocks();
+  };
   if (!ctx.caps().rayTracing()) {  // the raster mode needs no acceleration structures
     gs.tlasInstances = std::move(tlasInstances);  // animation still poses them (never built)
+    releaseStaging();
     return gs;
   }
   auto t1 = Clock::now();
@@ -204,6 +211,7 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   gs.tlas = rhi::Tlas::build(ctx, tlasInstances, &gs.accelStats);
   gs.tlasInstances = std::move(tlasInstances);
   gs.accelBuildMs = msSince(t1);
+  releaseStaging();  // and the build's scratch
   return gs;
 }
 

@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/log.h"
+#include "render/frame_memory.h"
 #include "render/jitter.h"
 #include "render/passes/cull.h"
 #include "render/renderer_impl.h"
@@ -217,6 +218,7 @@ RenderOutput::SceneStats Renderer::Impl::sceneStats() const {
   st.bufferBytes = mem.bytes(rhi::MemoryCategory::Buffer);
   st.accelBytes = mem.bytes(rhi::MemoryCategory::Accel);
   st.hostBytes = mem.bytes(rhi::MemoryCategory::Host);
+  setFrameMemory(st, transients.report());
   st.lights = gpu.lightCount;
   return st;
 }

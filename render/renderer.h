@@ -145,6 +145,12 @@ struct RenderOutput {
     uint64_t deviceBytesUsed = 0, deviceBytesReserved = 0;
     // deviceBytesUsed by rhi::MemoryCategory: images, device buffers, acceleration structures, host-visible.
     uint64_t imageBytes = 0, bufferBytes = 0, accelBytes = 0, hostBytes = 0;
+    // Frame resources (the last frame's graph, graph/transient_pool.h): the transient images'
+    // aliased heaps (G-buffer, targets, intermediates), what they would take unaliased, and the
+    // imported images (histories, presented output). frameBytes = transientBytes + historyBytes;
+    // it is part of imageBytes.
+    uint64_t frameBytes = 0, transientBytes = 0, transientUnaliasedBytes = 0, historyBytes = 0;
+    std::string frameMemoryReport;  // one image per line (rayster render --memory-report)
     uint32_t lights = 0;
   } scene;
 };

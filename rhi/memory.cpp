@@ -100,8 +100,11 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsag
   a.memory = b->memory;
   a.offset = *offset;
   a.mapped = b->mapped ? static_cast<char*>(b->mapped) + *offset : nullptr;
-  a.block = int32_t(blocks_.size());
-  blocks_.push_back(std::move(b));
+  size_t slot = 0;  // a released block's slot, or a new one
+  while (slot < blocks_.size() && blocks_[slot]) ++slot;
+  a.block = int32_t(slot);
+  if (slot == blocks_.size()) blocks_.emplace_back();
+  blocks_[slot] = std::move(b);
   stats_.blockCount++;
   stats_.usedBytes += req.size;
   return a;
@@ -120,7 +123,36 @@ void MemoryAllocator::free(const Allocation& a) {
   }
   Block& b = *blocks_[size_t(a.block)];
   b.sub->free(a.offset);
-  // Empty blocks stay: headless runs allocate once, and re-use avoids driver round trips.
+  if (!b.sub->empty()) return;
+  // One empty block per memory type and kind stays for re-use (no driver round trip when a frame
+  // frees and allocates again); another empty one is released.
+  for (size_t i = 0; i < blocks_.size(); ++i) {
+    const Block* o = blocks_[i].get();
+    if (o && i != size_t(a.block) && o->memoryType == b.memoryType && o->linear == b.linear && o->sub->empty()) {
+      releaseBlock(size_t(a.block));
+      return;
+    }
+  }
+}
+
+void MemoryAllocator::releaseBlock(size_t index) {
+  Block& b = *blocks_[index];
+  RAYSTER_ASSERT(b.sub->empty(), "only an empty block may be released");
+  vkFreeMemory(ctx_.device(), b.memory, nullptr);  // unmaps too
+  stats_.reservedBytes -= kBlockSize;
+  stats_.blockCount--;
+  blocks_[index].reset();
+}
+
+VkDeviceSize MemoryAllocator::releaseEmptyBlocks() {
+  std::lock_guard lock(mutex_);
+  VkDeviceSize released = 0;
+  for (size_t i = 0; i < blocks_.size(); ++i)
+    if (blocks_[i] && blocks_[i]->sub->empty()) {
+      releaseBlock(i);
+      released += kBlockSize;
+    }
+  return released;
 }
 
 MemoryStats MemoryAllocator::stats() const {

@@ -61,13 +61,19 @@ class MemoryAllocator {
   // linear: the resource is a buffer (or linear image); images and buffers never share a block.
   Allocation allocate(const VkMemoryRequirements& req, MemoryUsage usage, bool linear,
                       MemoryCategory category = MemoryCategory::Buffer);
+  // An emptied block stays as the one spare of its memory type and kind; a second empty one goes
+  // back to the driver at once.
   void free(const Allocation& allocation);
+  // Returns every empty block to the driver (after uploads, whose staging blocks would otherwise
+  // stay reserved). Returns the bytes released.
+  VkDeviceSize releaseEmptyBlocks();
   MemoryStats stats() const;
   uint32_t findMemoryType(uint32_t typeBits, MemoryUsage usage) const;
 
  private:
   struct Block;
   VkDeviceMemory allocateDeviceMemory(VkDeviceSize size, uint32_t type, void** mapped);
+  void releaseBlock(size_t index);  // the block must be empty; mutex held
   Context& ctx_;
   VkPhysicalDeviceMemoryProperties props_{};
   std::vector<std::unique_ptr<Block>> blocks_;

@@ -62,7 +62,10 @@ VkImageAspectFlags Image::aspect() const {
   return isDepthFormat(desc_.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
 }
 
-Image::Image(Context& ctx, const ImageDesc& desc, const char* name) : ctx_(&ctx), desc_(desc) {
+Image Image::unbound(Context& ctx, const ImageDesc& desc, const char* name) {
+  Image img;
+  img.ctx_ = &ctx;
+  img.desc_ = desc;
   VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   const VkFormat viewFormats[2] = {desc.format, VK_FORMAT_R8G8B8A8_SRGB};
   VkImageFormatListCreateInfo formatList{VK_STRUCTURE_TYPE_IMAGE_FORMAT_LIST_CREATE_INFO};
@@ -82,23 +85,43 @@ Image::Image(Context& ctx, const ImageDesc& desc, const char* name) : ctx_(&ctx)
   ci.tiling = VK_IMAGE_TILING_OPTIMAL;
   ci.usage = desc.usage;
   ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  VK_CHECK(vkCreateImage(ctx.device(), &ci, nullptr, &image_));
+  VK_CHECK(vkCreateImage(ctx.device(), &ci, nullptr, &img.image_));
+  ctx.setName(VK_OBJECT_TYPE_IMAGE, uint64_t(img.image_), name);
+  img.bytes_ = img.memoryRequirements().size;
+  return img;
+}
+
+VkMemoryRequirements Image::memoryRequirements() const {
   VkMemoryRequirements req;
-  vkGetImageMemoryRequirements(ctx.device(), image_, &req);
-  allocation_ = ctx.memory().allocate(req, MemoryUsage::GpuOnly, false, MemoryCategory::Image);
+  vkGetImageMemoryRequirements(ctx_->device(), image_, &req);
+  return req;
+}
+
+void Image::bindPlaced(VkDeviceMemory memory, VkDeviceSize offset, const char* name) {
+  RAYSTER_ASSERT(image_ && !view_, "bindPlaced() is for an unbound image");
+  VK_CHECK(vkBindImageMemory(ctx_->device(), image_, memory, offset));
+  createViews(name);
+}
+
+Image::Image(Context& ctx, const ImageDesc& desc, const char* name) {
+  *this = unbound(ctx, desc, name);
+  allocation_ = ctx.memory().allocate(memoryRequirements(), MemoryUsage::GpuOnly, false, MemoryCategory::Image);
   VK_CHECK(vkBindImageMemory(ctx.device(), image_, allocation_.memory, allocation_.offset));
+  createViews(name);
+}
+
+void Image::createViews(const char* name) {
   VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vi.image = image_;
-  vi.viewType = desc.layers > 1 || desc.array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
-  vi.format = desc.format;
-  vi.subresourceRange = {aspect(), 0, desc.mips, 0, desc.layers};
-  VK_CHECK(vkCreateImageView(ctx.device(), &vi, nullptr, &view_));
-  if (desc.srgbView) {
+  vi.viewType = desc_.layers > 1 || desc_.array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+  vi.format = desc_.format;
+  vi.subresourceRange = {aspect(), 0, desc_.mips, 0, desc_.layers};
+  VK_CHECK(vkCreateImageView(ctx_->device(), &vi, nullptr, &view_));
+  if (desc_.srgbView) {
     vi.format = VK_FORMAT_R8G8B8A8_SRGB;
-    VK_CHECK(vkCreateImageView(ctx.device(), &vi, nullptr, &srgbView_));
+    VK_CHECK(vkCreateImageView(ctx_->device(), &vi, nullptr, &srgbView_));
   }
-  ctx.setName(VK_OBJECT_TYPE_IMAGE, uint64_t(image_), name);
-  ctx.setName(VK_OBJECT_TYPE_IMAGE_VIEW, uint64_t(view_), name);
+  if (name) ctx_->setName(VK_OBJECT_TYPE_IMAGE_VIEW, uint64_t(view_), name);
 }
 
 Image& Image::operator=(Image&& o) noexcept {
@@ -109,6 +132,7 @@ Image& Image::operator=(Image&& o) noexcept {
     view_ = std::exchange(o.view_, VK_NULL_HANDLE);
     srgbView_ = std::exchange(o.srgbView_, VK_NULL_HANDLE);
     allocation_ = std::exchange(o.allocation_, {});
+    bytes_ = std::exchange(o.bytes_, 0);
     desc_ = o.desc_;
   }
   return *this;
@@ -126,6 +150,7 @@ void Image::reset() {
   view_ = VK_NULL_HANDLE;
   srgbView_ = VK_NULL_HANDLE;
   allocation_ = {};
+  bytes_ = 0;
 }
 
 Sampler::Sampler(Context& ctx, VkFilter filter, VkSamplerAddressMode address)

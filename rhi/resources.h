@@ -52,6 +52,11 @@ class Image {
  public:
   Image() = default;
   Image(Context& ctx, const ImageDesc& desc, const char* name);
+  // An image without memory yet (aliased transients, graph/transient_pool.h): bindPlaced() gives it
+  // memory owned elsewhere, at an offset, and creates its views.
+  static Image unbound(Context& ctx, const ImageDesc& desc, const char* name);
+  VkMemoryRequirements memoryRequirements() const;
+  void bindPlaced(VkDeviceMemory memory, VkDeviceSize offset, const char* name);
   ~Image() { reset(); }
   Image(Image&& o) noexcept { *this = std::move(o); }
   Image& operator=(Image&& o) noexcept;
@@ -63,11 +68,15 @@ class Image {
   const ImageDesc& desc() const { return desc_; }
   VkExtent2D extent() const { return {desc_.width, desc_.height}; }
   VkImageAspectFlags aspect() const;
+  // The device memory the image needs (its memory requirements' size), owned or placed.
+  VkDeviceSize bytes() const { return bytes_; }
   explicit operator bool() const { return image_ != VK_NULL_HANDLE; }
 
  private:
+  void createViews(const char* name);
   Context* ctx_ = nullptr;
   VkImage image_ = VK_NULL_HANDLE;
+  VkDeviceSize bytes_ = 0;
   VkImageView view_ = VK_NULL_HANDLE;
   VkImageView srgbView_ = VK_NULL_HANDLE;
   Allocation allocation_;

@@ -103,6 +103,17 @@ TEST(Bench, JsonIsCompleteAndWellFormed) {
     const uint64_t sum = c["memory"]["image_bytes"].get<uint64_t>() + c["memory"]["buffer_bytes"].get<uint64_t>() +
                          c["memory"]["accel_bytes"].get<uint64_t>() + c["memory"]["host_bytes"].get<uint64_t>();
     EXPECT_EQ(sum, c["memory"]["used_bytes"].get<uint64_t>()) << id;
+    // Frame resources (G-buffer, targets, histories) are their own figure, part of the images.
+    for (const char* k : {"frame_bytes", "transient_bytes", "transient_unaliased_bytes", "history_bytes"})
+      expectFiniteNumber(c["memory"], k, id);
+    const json& m = c["memory"];
+    EXPECT_GT(m["transient_bytes"].get<uint64_t>(), 0u) << id;
+    EXPECT_GT(m["history_bytes"].get<uint64_t>(), 0u) << id;
+    EXPECT_EQ(m["frame_bytes"].get<uint64_t>(), m["transient_bytes"].get<uint64_t>() + m["history_bytes"].get<uint64_t>())
+        << id;
+    EXPECT_LT(m["transient_bytes"].get<uint64_t>(), m["transient_unaliased_bytes"].get<uint64_t>())
+        << id << ": aliasing must save memory in the hybrid frame";
+    EXPECT_LE(m["frame_bytes"].get<uint64_t>(), m["image_bytes"].get<uint64_t>()) << id;
   }
   EXPECT_NE(j["configs"][0]["id"], j["configs"][1]["id"]);
 }

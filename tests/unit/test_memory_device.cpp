@@ -86,6 +86,40 @@ TEST_F(MemoryDevice, SmallBuffersShareOneBlock) {
   EXPECT_EQ(stats().reservedBytes, after.reservedBytes);
 }
 
+TEST_F(MemoryDevice, EmptiedBlocksBeyondOneSpareAreReleased) {
+  flush();
+  ctx_->memory().releaseEmptyBlocks();
+  const MemoryStats before = stats();
+  // Staging for a big upload: 12 host-visible buffers of 15 MiB (under the dedicated threshold)
+  // need several 64 MiB blocks.
+  std::vector<Buffer> staging;
+  for (int i = 0; i < 12; ++i)
+    staging.emplace_back(*ctx_, 15 * kMiB, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging");
+  const MemoryStats during = stats();
+  ASSERT_GE(during.blockCount, before.blockCount + 2);
+  EXPECT_EQ(during.dedicatedCount, before.dedicatedCount);
+  staging.clear();
+  flush();
+  const MemoryStats after = stats();
+  EXPECT_EQ(after.usedBytes, before.usedBytes);
+  EXPECT_EQ(after.blockCount, before.blockCount + 1) << "one emptied block stays as a spare, the rest are released";
+  EXPECT_EQ(after.reservedBytes, before.reservedBytes + MemoryAllocator::kBlockSize);
+  // After uploads, the spare goes too.
+  EXPECT_EQ(ctx_->memory().releaseEmptyBlocks(), MemoryAllocator::kBlockSize);
+  EXPECT_EQ(stats().blockCount, before.blockCount);
+  EXPECT_EQ(stats().reservedBytes, before.reservedBytes);
+  EXPECT_EQ(ctx_->memory().releaseEmptyBlocks(), 0u);
+  // A released block's slot serves new blocks, mapped and usable.
+  std::vector<Buffer> again;
+  for (int i = 0; i < 5; ++i) {
+    again.emplace_back(*ctx_, 15 * kMiB, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "again");
+    ASSERT_NE(again.back().mapped(), nullptr);
+    std::memset(again.back().mapped(), i, 15 * kMiB);
+  }
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(static_cast<const uint8_t*>(again[size_t(i)].mapped())[15 * kMiB - 1], i);
+  EXPECT_GE(stats().blockCount, before.blockCount + 1);
+}
+
 TEST_F(MemoryDevice, UploadBuffersDoNotClobberEachOther) {
   std::vector<Buffer> buffers;
   for (int i = 0; i < 4; ++i) buffers.emplace_back(*ctx_, 64 * 1024, kStorage, MemoryUsage::Upload, "upload");
