@@ -7,6 +7,8 @@
 #include <set>
 #include <sstream>
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 
 #include "app/bench_stats.h"
@@ -36,9 +38,10 @@ void expectSummary(const json& s, const std::string& where) {
 }
 
 // One bench run shared by the tests below: two configurations (two sizes), 2 warm-up + 3 frames.
+// ctest runs each test in its own process, in parallel: each process has its own folder.
 const std::filesystem::path& benchRun() {
   static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / "rayster-tests" / "bench-run";
+    auto d = std::filesystem::temp_directory_path() / "rayster-tests" / ("bench-run-" + std::to_string(::getpid()));
     std::filesystem::remove_all(d);
     std::filesystem::create_directories(d);
     RunResult r =
