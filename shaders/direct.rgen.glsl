@@ -39,6 +39,7 @@ float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
   traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, tMax, 0);
   return float(visible);
 }
+void skipLightVisibility(inout uint rng) { skipLightShadowRay(rng); }
 
 #include "lib/shading.glsl"
 

@@ -32,6 +32,7 @@ ivec2 gPixel;
 float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
   return i < frame.shadowLightCount ? texelFetch(visibilityTex, ivec3(gPixel, i), 0).r : 1.0;
 }
+void skipLightVisibility(inout uint rng) {}
 
 #include "lib/shading.glsl"
 

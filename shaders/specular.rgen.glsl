@@ -46,6 +46,7 @@ float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
               kMaskCastsShadow, 0, 0, 1, origin, 0.0, dir, tMax, 1);
   return float(visible);
 }
+void skipLightVisibility(inout uint rng) { skipLightShadowRay(rng); }
 
 #include "lib/shading.glsl"
 

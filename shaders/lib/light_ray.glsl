@@ -19,5 +19,10 @@ bool lightShadowRay(uint i, vec3 p, vec3 ng, float eps, inout uint rng, out vec3
   tMax = max(dist - eps, 0.0);
   return dot(dir, ng) > 0.0;
 }
+// Draws what lightShadowRay draws, for a ray not traced.
+void skipLightShadowRay(inout uint rng) {
+  rnd(rng);
+  rnd(rng);
+}
 
 #endif

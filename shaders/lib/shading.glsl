@@ -1,7 +1,10 @@
 // Shading of a surface point by direct light, emission and environment: one function for the
 // deferred lighting pass and for every hit of the specular bounce loop (TECHNIQUES.md §10).
 // The includer defines `float lightVisibility(uint light, vec3 p, vec3 ng, inout uint rng)`:
-// the lighting pass reads the traced shadow image, the bounce loop traces a shadow ray.
+// the lighting pass reads the traced shadow image, the bounce loop traces a shadow ray; and
+// `void skipLightVisibility(inout uint rng)`, which draws the random numbers lightVisibility would
+// have drawn without tracing (a light that cannot contribute keeps the path's later samples as
+// they were).
 // Needs lib/lights.glsl, lib/light_select.glsl, lib/brdf.glsl and lib/environment.glsl.
 #ifndef RAYSTER_SHADING_GLSL
 #define RAYSTER_SHADING_GLSL
@@ -49,8 +52,6 @@ vec3 shadeLight(ShadingInput s, ShadingTerms t, uint i, inout uint rng) {
   float dist;
   vec3 incident = lightIncident(light, s.p, l, dist);
   if (all(equal(incident, vec3(0.0)))) return vec3(0.0);
-  float visibility = lightVisibility(i, s.p, s.ng, rng);
-  if (visibility <= 0.0) return vec3(0.0);
   // The traced reflection already sees the light's visible shape: only the diffuse layer for its share.
   float nl = max(dot(s.n, l), 0.0);
   vec3 f = t.w * (1.0 - t.fv) * t.bsdf.diffuse / kPi * nl;
@@ -58,6 +59,14 @@ vec3 shadeLight(ShadingInput s, ShadingTerms t, uint i, inout uint rng) {
     float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
     f += (1.0 - t.w) * evalBsdfCos(t.bsdf, s.n, s.v, l, 0.5 * widen);
   }
+  // Mirror, metal and glass hits of the bounce loop have no untraced lobe: no shadow ray for them
+  // (on whitted's glass bunny every bounce used to trace one for nothing).
+  if (all(equal(f, vec3(0.0)))) {
+    skipLightVisibility(rng);
+    return vec3(0.0);
+  }
+  float visibility = lightVisibility(i, s.p, s.ng, rng);
+  if (visibility <= 0.0) return vec3(0.0);
   return f * incident * visibility;
 }
 
