@@ -39,13 +39,6 @@ inline constexpr VkFormat kSvgfColorHistoryFormat = VK_FORMAT_R32G32B32A32_SFLOA
 inline constexpr VkFormat kSvgfMomentsHistoryFormat = VK_FORMAT_R32G32_SFLOAT;
 inline constexpr VkFormat kSvgfWorkingFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
-// Workgroups of an à-trous iteration at `step`: per axis, `step` residue classes × 8-point blocks
-// of each class's lattice (shaders/lib/atrous_tile.glsl).
-inline VkExtent2D atrousGroups(VkExtent2D size, uint32_t step) {
-  auto axis = [step](uint32_t n) { return step * (((n + step - 1) / step + 7) / 8); };
-  return {axis(size.width), axis(size.height)};
-}
-
 // Image descriptions for the caller's History objects.
 rhi::ImageDesc surfaceDesc(VkExtent2D size);
 rhi::ImageDesc shadowHistoryDesc(VkExtent2D size, uint32_t lights);

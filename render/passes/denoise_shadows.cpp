@@ -71,8 +71,7 @@ graph::ImageHandle shadowAtrous(graph::RenderGraph& graph, const DenoiseInputs& 
             .push(pc.cmd, pipe);
         const gpu::AtrousPush push{{in.size.width, in.size.height}, lights, step, 0, 0, 0, 0};
         vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), &push);
-        const VkExtent2D groups = atrousGroups(in.size, step);
-        vkCmdDispatch(pc.cmd, groups.width, groups.height, 1);
+        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
       });
   return out;
 }

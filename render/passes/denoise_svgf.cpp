@@ -72,9 +72,7 @@ graph::ImageHandle svgfAtrous(graph::RenderGraph& graph, const DenoiseInputs& in
         if (history.valid()) w.storageImage(4, pc.image(history).view());
         w.push(pc.cmd, pipe);
         const gpu::AtrousPush push{{in.size.width, in.size.height}, 1, step, 0, 0, 0, 0};
-        vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), &push);
-        const VkExtent2D groups = atrousGroups(in.size, step);
-        vkCmdDispatch(pc.cmd, groups.width, groups.height, 1);
+        dispatch(pc.cmd, pipe, in.size, &push, sizeof(push));
       });
   return output;
 }

@@ -2,13 +2,11 @@
 // SVGF_WRITE_HISTORY): two pipelines, so the plain iterations bind no history image at all.
 #include "lib/common.glsl"
 #include "lib/denoise.glsl"
-#include "lib/atrous_tile.glsl"
 
 // SVGF, one à-trous iteration (TECHNIQUES.md §12): 5×5 B3-spline taps at p + step·(i, j), weights
 // w_z (σz = 1), w_n (σn = 128) and w_l = exp(−|l_p − l_q| / (σl·sqrt(g3×3(var_p)) + ε)) (σl = 4).
 // Colour Σ h·w·c / Σ h·w; variance Σ (h·w)²·var / (Σ h·w)², passed on in .a. Mirrors and glass
 // (roughness ≤ kSharpRoughness) are passed through and never used as neighbours of rougher pixels.
-// The taps come from a shared-memory tile of the pixel's residue lattice (lib/atrous_tile.glsl).
 // With SVGF_WRITE_HISTORY (iteration 1 while moving) the output also becomes the colour history
 // (rgb; its a, the history length n written by the temporal pass, is kept).
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -20,12 +18,6 @@ layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D outColorVariance
 layout(set = 0, binding = 4, rgba32f) uniform image2D outHistory;
 #endif
 layout(push_constant, scalar) uniform Push { AtrousPush pc; };
-
-// The tile: colour + variance, the surface texel, and whether the texel may be a neighbour
-// (inside the image, not sky, not sharp).
-shared vec4 tileColor[kAtrousTexels];
-shared uvec2 tileSurface[kAtrousTexels];
-shared bool tileUsable[kAtrousTexels];
 
 bool inside(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(pc.size))); }
 bool sharp(ivec2 q) { return texelFetch(materialTex, q, 0).r <= kSharpRoughness; }
@@ -45,38 +37,25 @@ float blurredVariance(ivec2 p) {
 }
 
 void main() {
-  const AtrousLattice lattice = atrousLattice(pc.size, pc.step);
-  for (int k = int(gl_LocalInvocationIndex); k < kAtrousTexels; k += kAtrousBlock * kAtrousBlock) {
-    ivec2 q = atrousTexelPixel(lattice, ivec2(k % kAtrousSpan, k / kAtrousSpan));
-    bool usable = inside(q);
-    if (usable) {
-      tileColor[k] = texelFetch(inputTex, q, 0);
-      tileSurface[k] = texelFetch(surfaceTex, q, 0).xy;
-      usable = !isSky(decodeSurface(tileSurface[k])) && !sharp(q);
-    }
-    tileUsable[k] = usable;
-  }
-  barrier();
-
-  const ivec2 t = atrousTexel();
-  const ivec2 p = atrousTexelPixel(lattice, t);
-  if (!inside(p)) return;
-  vec4 centre = tileColor[atrousIndex(t)];
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(p), pc.size))) return;
+  vec4 centre = texelFetch(inputTex, p, 0);
+  Surface sp = loadSurface(surfaceTex, p, pc.size);
   vec4 result = centre;
-  if (tileUsable[atrousIndex(t)]) {
-    Surface sp = loadSurface(surfaceTex, p, pc.size);
+  if (!isSky(sp) && !sharp(p)) {
     float lp = luminance(centre.rgb);
     float lumScale = 1.0 / (kSigmaLuminance * sqrt(blurredVariance(p)) + kLuminanceEpsilon);
     vec3 color = vec3(0.0);
     float variance = 0.0, weights = 0.0;
     for (int j = -2; j <= 2; ++j)
       for (int i = -2; i <= 2; ++i) {
-        int k = atrousIndex(t + ivec2(i, j));
-        if (!tileUsable[k] && (i != 0 || j != 0)) continue;
-        vec4 c = tileColor[k];
+        ivec2 q = p + int(pc.step) * ivec2(i, j);
+        if (!inside(q)) continue;
+        vec4 c = texelFetch(inputTex, q, 0);
         float w = b3(i) * b3(j);
         if (i != 0 || j != 0) {
-          Surface sq = decodeSurface(tileSurface[k]);
+          Surface sq = decodeSurface(texelFetch(surfaceTex, q, 0).xy);
+          if (isSky(sq) || sharp(q)) continue;
           w *= geometryWeight(sp, sq, vec2(int(pc.step) * ivec2(i, j))) * exp(-abs(lp - luminance(c.rgb)) * lumScale);
         }
         color += w * c.rgb;
