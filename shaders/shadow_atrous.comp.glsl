@@ -29,6 +29,8 @@ void main() {
     weights[l] = 1.0;
   }
   if (!isSky(sp)) {
+    float depthScales[5];
+    atrousDepthScales(sp, int(pc.step), depthScales);
     [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l) sum[l] = weights[l] = 0.0;
     for (int j = -2; j <= 2; ++j)
       for (int i = -2; i <= 2; ++i) {
@@ -37,12 +39,14 @@ void main() {
         Surface sq = decodeSurface(texelFetch(surfaceTex, q, 0).xy);
         if (isSky(sq)) continue;
         const bool isCentre = i == 0 && j == 0;
-        float w = b3(i) * b3(j) * (isCentre ? 1.0 : geometryWeight(sp, sq, vec2(int(pc.step) * ivec2(i, j))));
+        // The depth weight's exponent joins each layer's value weight in one exp().
+        float w = b3(i) * b3(j) * (isCentre ? 1.0 : normalWeight(sp, sq));
         if (w <= 0.0) continue;
+        float dz = isCentre ? 0.0 : depthExponent(sp, sq, depthScales[atrousDistanceIndex(i, j)]);
         [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l) {
           if (l >= layers) break;
           float v = texelFetch(inputTex, ivec3(q, l), 0).r;
-          float wl = isCentre ? w : w * exp(-abs(centre[l] - v) * scale[l]);
+          float wl = isCentre ? w : w * exp(-(dz + abs(centre[l] - v) * scale[l]));
           sum[l] += wl * v;
           weights[l] += wl;
         }

@@ -117,5 +117,26 @@ float geometryWeight(Surface p, Surface q, vec2 offset) {
   return wz * wn;
 }
 
+// The same weights split for the à-trous loops, which run them 24 times per pixel: the transcendental
+// functions were most of their cost. w_n = max(0, n_p·n_q)^128 by seven squarings (σn = 2^7); the
+// depth weight as its exponent with the reciprocal from atrousDepthScales(), so the caller folds it
+// and the value weight into one exp().
+float normalWeight(Surface p, Surface q) {
+  float c = max(0.0, dot(p.n, q.n));
+  for (int k = 0; k < kSigmaNormalLog2; ++k) c *= c;
+  return c;
+}
+// 1 / (σz·|∇z|·|offset| + ε) for the five tap distances of a 5×5 kernel at `step`, indexed by
+// atrousDistanceIndex(i, j): |(i, j)| = 1, √2, 2, √5, √8.
+void atrousDepthScales(Surface p, int step, out float scales[5]) {
+  const float lengths[5] = float[5](1.0, 1.41421356, 2.0, 2.23606798, 2.82842712);
+  for (int k = 0; k < 5; ++k) scales[k] = 1.0 / (kSigmaDepth * p.zGrad * float(step) * lengths[k] + kDepthEpsilon);
+}
+int atrousDistanceIndex(int i, int j) {
+  int d = i * i + j * j;  // 1, 2, 4, 5 or 8
+  return d == 1 ? 0 : d == 2 ? 1 : d == 4 ? 2 : d == 5 ? 3 : 4;
+}
+float depthExponent(Surface p, Surface q, float scale) { return abs(p.z - q.z) * scale; }
+
 
 #endif

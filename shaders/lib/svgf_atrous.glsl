@@ -45,6 +45,8 @@ void main() {
   if (!isSky(sp) && !sharp(p)) {
     float lp = luminance(centre.rgb);
     float lumScale = 1.0 / (kSigmaLuminance * sqrt(blurredVariance(p)) + kLuminanceEpsilon);
+    float depthScales[5];
+    atrousDepthScales(sp, int(pc.step), depthScales);
     vec3 color = vec3(0.0);
     float variance = 0.0, weights = 0.0;
     for (int j = -2; j <= 2; ++j)
@@ -56,7 +58,8 @@ void main() {
         if (i != 0 || j != 0) {
           Surface sq = decodeSurface(texelFetch(surfaceTex, q, 0).xy);
           if (isSky(sq) || sharp(q)) continue;
-          w *= geometryWeight(sp, sq, vec2(int(pc.step) * ivec2(i, j))) * exp(-abs(lp - luminance(c.rgb)) * lumScale);
+          w *= normalWeight(sp, sq) * exp(-(depthExponent(sp, sq, depthScales[atrousDistanceIndex(i, j)]) +
+                                             abs(lp - luminance(c.rgb)) * lumScale));
         }
         color += w * c.rgb;
         variance += w * w * c.a;

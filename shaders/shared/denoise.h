@@ -50,6 +50,7 @@ RAYSTER_CONST float kSvgfMaxVariance = 65000.0;
 // À-trous edge-stopping weights (SVGF paper; the book's code has the same defaults).
 RAYSTER_CONST float kSigmaDepth = 1.0;
 RAYSTER_CONST float kSigmaNormal = 128.0;
+RAYSTER_CONST int kSigmaNormalLog2 = 7;  // the à-trous loops square 7 times (lib/denoise.glsl)
 RAYSTER_CONST float kSigmaLuminance = 4.0;
 RAYSTER_CONST float kDepthEpsilon = 1.0e-4;       // keeps w_z finite on planes facing the camera
 RAYSTER_CONST float kLuminanceEpsilon = 1.0e-6;   // keeps w_l finite where the variance is 0
@@ -88,6 +89,7 @@ struct AtrousPush {
 static_assert(sizeof(SurfacePush) == 16);
 static_assert(sizeof(TemporalPush) == 16);
 static_assert(sizeof(AtrousPush) == 32);
+static_assert(kSigmaNormal == float(1 << kSigmaNormalLog2), "the à-trous normal weight squares kSigmaNormalLog2 times");
 }  // namespace rayster::gpu
 #endif
 
