@@ -27,7 +27,7 @@ using test::ref::vec2;
 using test::ref::vec3;
 using test::ref::vec4;
 
-constexpr int kW = 16, kH = 16, kLights = 2;
+constexpr int kW = 21, kH = 15, kLights = 2;  // not multiples of the 8×8 workgroups
 constexpr float kNear = 0.1f, kFar = 100.0f;
 constexpr VkExtent2D kSize{kW, kH};
 constexpr size_t kPixels = size_t(kW) * kH;

@@ -75,7 +75,7 @@ TEST_F(Denoise, ShadowAtrousMatchesCpu) {
   std::vector<float> variance = noise(kPixels * kLights, 11, 0.0f, 0.1f);
   for (size_t i = 0; i < variance.size(); i += 3) variance[i] = 0.0f;  // converged: edges stay sharp
   for (float& v : variance) v = viaHalf(v);
-  for (uint32_t step : {1u, 4u}) {
+  for (uint32_t step : {1u, 2u, 4u, 8u}) {
     Frame fr(*this);
     auto surface = fr.surface("surface", g);
     auto in = fr.uploadHalves("in", VK_FORMAT_R16_SFLOAT, kLights, input);
@@ -143,7 +143,7 @@ TEST_F(Denoise, SvgfAtrousMatchesCpu) {
   const ref::GBufferCpu g = makeGBuffer();
   std::vector<vec4> input = radianceNoise(9);
   for (vec4& v : input) v.a = viaHalf(v.a * 0.15f);  // variance
-  for (uint32_t step : {1u, 4u}) {
+  for (uint32_t step : {1u, 2u, 4u, 8u}) {
     for (bool history : {false, true}) {
       Frame fr(*this);
       auto surface = fr.surface("surface", g);
