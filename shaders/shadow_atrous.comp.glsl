@@ -8,7 +8,8 @@
 // p + step·(i, j), depth and normal weights (σz = 1, σn = 128), computed once for every light
 // layer, times a per-layer value weight exp(−|v_p − v_q| / (σl·sqrt(var_p) + ε)) with the variance
 // of the temporal pass (not propagated: each iteration uses the temporal estimate). The per-layer
-// loops run to the constant kMaxShadowLights, unrolled, so the arrays stay in registers. The taps
+// loops run to the constant kMaxShadowDenoiseLayers (lights + AO), unrolled, so the arrays stay in
+// registers. The taps
 // come from a shared-memory tile of the pixel's residue lattice (lib/atrous_tile.glsl).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform usampler2D surfaceTex;
@@ -20,7 +21,7 @@ layout(push_constant, scalar) uniform Push { AtrousPush pc; };
 // The tile: the surface texel (id kBackgroundId outside the image, so it never counts) and every
 // layer's value.
 shared uvec2 tileSurface[kAtrousTexels];
-shared float tileValue[kMaxShadowLights][kAtrousTexels];
+shared float tileValue[kMaxShadowDenoiseLayers][kAtrousTexels];
 
 bool inside(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(pc.size))); }
 
@@ -31,7 +32,7 @@ void main() {
     ivec2 q = atrousTexelPixel(lattice, ivec2(k % kAtrousSpan, k / kAtrousSpan));
     bool in_ = inside(q);
     tileSurface[k] = in_ ? texelFetch(surfaceTex, q, 0).xy : uvec2(0u);  // depth 0: sky
-    [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l) {
+    [[unroll]] for (int l = 0; l < int(kMaxShadowDenoiseLayers); ++l) {
       if (l >= layers) break;
       tileValue[l][k] = in_ ? texelFetch(inputTex, ivec3(q, l), 0).r : 0.0;
     }
@@ -43,8 +44,8 @@ void main() {
   if (!inside(p)) return;
   const int c = atrousIndex(t);
   Surface sp = loadSurface(surfaceTex, p, pc.size);
-  float sum[kMaxShadowLights], weights[kMaxShadowLights], centre[kMaxShadowLights], scale[kMaxShadowLights];
-  [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l) {
+  float sum[kMaxShadowDenoiseLayers], weights[kMaxShadowDenoiseLayers], centre[kMaxShadowDenoiseLayers], scale[kMaxShadowDenoiseLayers];
+  [[unroll]] for (int l = 0; l < int(kMaxShadowDenoiseLayers); ++l) {
     if (l >= layers) break;
     centre[l] = tileValue[l][c];
     scale[l] = 1.0 / (kSigmaLuminance * sqrt(texelFetch(varianceTex, ivec3(p, l), 0).r) + kShadowValueEpsilon);
@@ -52,7 +53,7 @@ void main() {
     weights[l] = 1.0;
   }
   if (!isSky(sp)) {
-    [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l) sum[l] = weights[l] = 0.0;
+    [[unroll]] for (int l = 0; l < int(kMaxShadowDenoiseLayers); ++l) sum[l] = weights[l] = 0.0;
     for (int j = -2; j <= 2; ++j)
       for (int i = -2; i <= 2; ++i) {
         const int k = atrousIndex(t + ivec2(i, j));
@@ -61,7 +62,7 @@ void main() {
         const bool isCentre = i == 0 && j == 0;
         float w = b3(i) * b3(j) * (isCentre ? 1.0 : geometryWeight(sp, sq, vec2(int(pc.step) * ivec2(i, j))));
         if (w <= 0.0) continue;
-        [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l) {
+        [[unroll]] for (int l = 0; l < int(kMaxShadowDenoiseLayers); ++l) {
           if (l >= layers) break;
           float v = tileValue[l][k];
           float wl = isCentre ? w : w * exp(-abs(centre[l] - v) * scale[l]);
@@ -70,6 +71,6 @@ void main() {
         }
       }
   }
-  [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l)
+  [[unroll]] for (int l = 0; l < int(kMaxShadowDenoiseLayers); ++l)
     if (l < layers) imageStore(outVisibility, ivec3(p, l), vec4(sum[l] / weights[l]));
 }

@@ -7,17 +7,17 @@
 // SVGF, one à-trous iteration (TECHNIQUES.md §12): 5×5 B3-spline taps at p + step·(i, j), weights
 // w_z (σz = 1), w_n (σn = 128) and w_l = exp(−|l_p − l_q| / (σl·sqrt(g3×3(var_p)) + ε)) (σl = 4).
 // Colour Σ h·w·c / Σ h·w; variance Σ (h·w)²·var / (Σ h·w)², passed on in .a. Mirrors and glass
-// (roughness ≤ kSharpRoughness) are passed through and never used as neighbours of rougher pixels.
+// (roughness ≤ kSharpRoughness: the surface texel's sharp flag, so nothing reads the material image)
+// are passed through and never used as neighbours of rougher pixels.
 // The taps come from a shared-memory tile of the pixel's residue lattice (lib/atrous_tile.glsl).
 // With SVGF_WRITE_HISTORY (iteration 1 while moving) the output also becomes the colour history
 // (rgb; its a, the history length n written by the temporal pass, is kept).
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 0) uniform usampler2D surfaceTex;
-layout(set = 0, binding = 1) uniform sampler2D materialTex;  // .r perceptual roughness
-layout(set = 0, binding = 2) uniform sampler2D inputTex;     // rgb colour, a variance
-layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D outColorVariance;
+layout(set = 0, binding = 0) uniform usampler2D surfaceTex;  // with the sharp flag
+layout(set = 0, binding = 1) uniform sampler2D inputTex;     // rgb colour, a variance
+layout(set = 0, binding = 2, rgba16f) uniform writeonly image2D outColorVariance;
 #ifdef SVGF_WRITE_HISTORY
-layout(set = 0, binding = 4, rgba32f) uniform image2D outHistory;
+layout(set = 0, binding = 3, rgba32f) uniform image2D outHistory;
 #endif
 layout(push_constant, scalar) uniform Push { AtrousPush pc; };
 
@@ -28,7 +28,6 @@ shared uvec2 tileSurface[kAtrousTexels];
 shared bool tileUsable[kAtrousTexels];
 
 bool inside(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(pc.size))); }
-bool sharp(ivec2 q) { return texelFetch(materialTex, q, 0).r <= kSharpRoughness; }
 
 // 3×3 Gaussian (1/4, 1/2, 1/4) of the variance around p.
 float blurredVariance(ivec2 p) {
@@ -52,7 +51,8 @@ void main() {
     if (usable) {
       tileColor[k] = texelFetch(inputTex, q, 0);
       tileSurface[k] = texelFetch(surfaceTex, q, 0).xy;
-      usable = !isSky(decodeSurface(tileSurface[k])) && !sharp(q);
+      Surface s = decodeSurface(tileSurface[k]);
+      usable = !isSky(s) && !s.sharp;
     }
     tileUsable[k] = usable;
   }
