@@ -110,6 +110,7 @@ glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::C
   fc.seed = s.seed;
   fc.lightCount = gpu.lightCount;
   fc.shadowLightCount = shadowLights();
+  fc.aoLayer = aoInShadowImage(s) ? shadowLights() : 0u;
   fc.manyLights = manyLights ? 1u : 0u;
   fc.exposure = std::exp2(s.exposureEv);
   fc.geometries = gpu.geometries.address();
@@ -150,8 +151,10 @@ glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::C
 void Renderer::Impl::ensureHistory(const RenderSettings& s) {
   const VkExtent2D size{s.width, s.height};
   surfaceHistory.ensure(ctx, surfaceDesc(size), "surface-history");
-  shadowHistory.ensure(ctx, shadowHistoryDesc(size, shadowLights()), "shadow-history");
-  aoHistory.ensure(ctx, shadowHistoryDesc(s.ao ? size : VkExtent2D{1, 1}, 1), "ao-history");
+  // One history for the shadow denoiser's layers: the lights', then AO's (aoInShadowImage).
+  const uint32_t shadowLayers = shadowLights() + (aoInShadowImage(s) ? 1u : 0u);
+  shadowHistory.ensure(ctx, shadowHistoryDesc(shadowLayers > 0 ? size : VkExtent2D{1, 1}, shadowLayers),
+                       "shadow-history");
   specularHistory.ensure(ctx, size, true, "specular");
   indirectHistory.ensure(ctx, size, indirectOn(s), "indirect");
   directHistory.ensure(ctx, size, manyLights, "direct");

@@ -98,7 +98,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   const double cpuMs = msSince(frameStart);
   ctx.wait(submitted);
   const double wallMs = msSince(frameStart);
-  for (History* h : {&surfaceHistory, &shadowHistory, &aoHistory}) h->valid = true;
+  for (History* h : {&surfaceHistory, &shadowHistory}) h->valid = true;
   const bool measured = f >= s.warmupFrames || s.warmupFrames >= s.frames;  // never an empty sample
   double gpuMs = 0;
   for (auto& t : timers.read()) {
@@ -136,49 +136,51 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   // moves, the denoisers keep short histories.
   const TemporalState temporal{moving, f == 0 || cut || !surfaceHistory.valid};
   const DenoiseInputs dn{pipelines.denoise, nearest.handle(), in.size};
-  const SurfacePair surface{writeSurface(graph, dn, gb.depth, gb.normals, gb.id, surfaceHistory.next(graph, "surface", f),
-                                         camera.zNear, camera.zFar),
+  const SurfacePair surface{writeSurface(graph, dn, gb.depth, gb.normals, gb.id, gb.material,
+                                         surfaceHistory.next(graph, "surface", f), camera.zNear, camera.zFar),
                             surfaceHistory.previous(graph, "surface", f)};
   const graph::ImageHandle motion = gb.motion;
 
-  o.shadowRaw = traceShadows(graph, in, gb, shadowLights());
+  // AO on: rt-ao fills the shadow image's last layer, and one shadow-denoiser run (one guide fetch
+  // per tap, one history) takes the lights and AO. AO off: its raw image is constant (1) and goes
+  // to lighting as is.
+  const bool aoShared = aoInShadowImage(s);
+  o.shadowRaw = traceShadows(graph, in, gb, shadowLights(), aoShared ? 1u : 0u);
+  o.aoRaw = aoShared ? traceAo(graph, in, gb, o.shadowRaw) : traceAo(graph, in, gb);
+  o.aoLayer = aoShared ? shadowLights() : 0u;
   if (s.rawRays) {
     if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
     traceRawPrimary(graph, in, *rawPipelines);
     traceRawShadows(graph, in, gb, shadowLights(), *rawPipelines);
     o.rawTwins = traceRawTwins(graph, in, gb, manyLights, *rawPipelines);
   }
-  // Many-light mode traces no shadow layers: lighting reads none, so nothing to denoise.
+  // Many-light mode traces no shadow layers: lighting reads none, so only AO's needs denoising.
   o.shadow = o.shadowRaw;
-  if (shadowLights() > 0)
+  o.ao = o.aoRaw;
+  if (shadowLights() > 0 || aoShared) {
     o.shadow = denoiseShadows(graph, dn, surface, motion, o.shadowRaw,
                               {shadowHistory.previous(graph, "shadow-history", f),
                                shadowHistory.next(graph, "shadow-history", f)},
                               temporal)
                    .denoised;
+    if (aoShared) o.ao = o.shadow;
+  }
   o.specularRaw = traceSpecular(graph, in, gb);
-  o.specular = denoiseRadiance(graph, dn, "reflection", surface, motion, gb.material, o.specularRaw,
+  o.specular = denoiseRadiance(graph, dn, "reflection", surface, motion, o.specularRaw,
                                specularHistory.colorPair(graph, "specular", f),
                                specularHistory.momentsPair(graph, "specular", f), temporal)
                    .denoised;
   graph::ImageHandle direct;
   if (manyLights)
-    direct = denoiseRadiance(graph, dn, "direct", surface, motion, gb.material, traceDirect(graph, in, gb),
+    direct = denoiseRadiance(graph, dn, "direct", surface, motion, traceDirect(graph, in, gb),
                              directHistory.colorPair(graph, "direct", f), directHistory.momentsPair(graph, "direct", f),
                              temporal)
                  .denoised;
   // When an effect is off its raw image is constant and goes to lighting as is.
-  o.aoRaw = traceAo(graph, in, gb);
-  o.ao = o.aoRaw;
-  if (s.ao)
-    o.ao = denoiseShadows(graph, dn, surface, motion, o.aoRaw,
-                          {aoHistory.previous(graph, "ao-history", f), aoHistory.next(graph, "ao-history", f)}, temporal,
-                          "ao")
-               .denoised;
   o.indirectRaw = traceIndirect(graph, in, gb);
   o.indirect = o.indirectRaw;
   if (indirectOn(s))
-    o.indirect = denoiseRadiance(graph, dn, "indirect", surface, motion, gb.material, o.indirectRaw,
+    o.indirect = denoiseRadiance(graph, dn, "indirect", surface, motion, o.indirectRaw,
                                  indirectHistory.colorPair(graph, "indirect", f),
                                  indirectHistory.momentsPair(graph, "indirect", f), temporal)
                      .denoised;

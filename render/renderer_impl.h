@@ -43,6 +43,7 @@ inline constexpr uint32_t kMaxTimedPasses = 96;
 struct FrameImages {
   graph::ImageHandle shadowRaw, shadow, specularRaw, specular, aoRaw, ao, indirectRaw, indirect, hdr;
   RawTwinImages rawTwins;  // --raw-rays
+  uint32_t aoLayer = 0;    // AO's layer of aoRaw and ao (FrameConstants::aoLayer: after the lights when they share)
 };
 
 struct Renderer::Impl {
@@ -58,7 +59,7 @@ struct Renderer::Impl {
   // Temporal state of the denoisers: the surface (disocclusion tests), shadow and AO means, SVGF
   // colour and moments of the reflections, the indirect light and the many-light direct light;
   // and TAA's resolved colour.
-  History surfaceHistory, shadowHistory, aoHistory, taaHistory;
+  History surfaceHistory, shadowHistory, taaHistory;  // shadowHistory: the lights' and AO's layers
   struct SvgfHistory {
     History color, moments;
     // Full size only while the signal exists (a 1×1 stand-in otherwise, never read).
@@ -116,6 +117,9 @@ struct Renderer::Impl {
   float aoRadius(const RenderSettings& s) const;
   int32_t findInstance(const std::string& name) const;
   uint32_t shadowLights() const { return manyLights ? 0u : std::min(gpu.lightCount, gpu::kMaxShadowLights); }
+  // The hybrid with AO traces it into the shadow visibility image's layer shadowLights() and
+  // denoises it with the lights in one shadow-denoiser run (renderer_frame.cpp recordHybrid).
+  static bool aoInShadowImage(const RenderSettings& s) { return s.mode != Mode::Raster && s.ao; }
   // Rays of the hybrid's reflection/refraction loop after the G-buffer surface (RenderSettings::maxDepth).
   static uint32_t specularBounces(const RenderSettings& s) {
     return std::clamp(s.maxDepth > 1 ? s.maxDepth - 1 : 1u, 1u, gpu::kMaxSpecularBounces);

@@ -7,7 +7,7 @@
 // the shading normal per pixel per frame, from P offset along the geometric normal, as long as the
 // AO radius (lib/ao_ray.glsl); any shadow caster in between occludes (terminate on first hit, no
 // closest hit). With cosine sampling the AO is the plain mean of these visibilities.
-// Output (R16F, one layer): 1 unoccluded, 0 occluded; directions under the geometric surface count
+// Output (R16F, layer frame.aoLayer: its own one-layer image, or the shadow image's AO layer): 1 unoccluded, 0 occluded; directions under the geometric surface count
 // as occluded (the surface itself blocks them); background pixels and AO off write 1.
 layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = 2) uniform sampler2D depthTex;
@@ -23,7 +23,7 @@ void main() {
   vec3 origin, dir;
   float value;
   if (!aoRay(px, origin, dir, value)) {
-    imageStore(outAo, ivec3(px, 0), vec4(value));
+    imageStore(outAo, ivec3(px, int(frame.aoLayer)), vec4(value));
     return;
   }
   visible = 0u;
@@ -31,5 +31,5 @@ void main() {
                ((frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT);
   // Casters only: a light's visible shape does not occlude the light around it.
   traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, frame.aoRadius, 0);
-  imageStore(outAo, ivec3(px, 0), vec4(float(visible)));
+  imageStore(outAo, ivec3(px, int(frame.aoLayer)), vec4(float(visible)));
 }

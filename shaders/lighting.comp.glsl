@@ -23,7 +23,7 @@ layout(set = 0, binding = 5) uniform sampler2D emissiveTex;
 layout(set = 0, binding = 6) uniform sampler2DArray visibilityTex;
 layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D outColor;
 layout(set = 0, binding = 8) uniform sampler2D specularTex;
-layout(set = 0, binding = 9) uniform sampler2DArray aoTex;  // 1 unoccluded; written 1 when AO is off
+layout(set = 0, binding = 9) uniform sampler2DArray aoTex;  // layer frame.aoLayer: 1 unoccluded; 1 when AO is off
 layout(set = 0, binding = 10) uniform sampler2D indirectTex;  // rgb: irradiance E; read when kEffectIndirect
 layout(set = 0, binding = 11) uniform sampler2D directTex;  // many-light mode: stochastic direct light
 
@@ -62,7 +62,7 @@ void main() {
   s.transmission = mat.b;
   s.emissive = texelFetch(emissiveTex, px, 0).rgb;
   s.tracedWeight = tracedSpecularWeight(s.roughness, s.transmission);
-  s.envOcclusion = texelFetch(aoTex, ivec3(px, 0), 0).r;
+  s.envOcclusion = texelFetch(aoTex, ivec3(px, int(frame.aoLayer)), 0).r;
   s.useIndirect = (frame.effectFlags & kEffectIndirect) != 0u;
   s.indirect = s.useIndirect ? texelFetch(indirectTex, px, 0).rgb : vec3(0.0);
   uint rng = 0u;  // visibility comes from the shadow image: no random numbers needed here

@@ -7,7 +7,8 @@
 // p + step·(i, j), depth and normal weights (σz = 1, σn = 128), computed once for every light
 // layer, times a per-layer value weight exp(−|v_p − v_q| / (σl·sqrt(var_p) + ε)) with the variance
 // of the temporal pass (not propagated: each iteration uses the temporal estimate). The per-layer
-// loops run to the constant kMaxShadowLights, unrolled, so the arrays stay in registers.
+// loops run to the constant kMaxShadowDenoiseLayers (lights + AO), unrolled, so the arrays stay in
+// registers.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform usampler2D surfaceTex;
 layout(set = 0, binding = 1) uniform sampler2DArray inputTex;
@@ -20,8 +21,9 @@ void main() {
   if (any(greaterThanEqual(uvec2(p), pc.size))) return;
   const int layers = int(pc.layers);
   Surface sp = loadSurface(surfaceTex, p, pc.size);
-  float sum[kMaxShadowLights], weights[kMaxShadowLights], centre[kMaxShadowLights], scale[kMaxShadowLights];
-  [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l) {
+  float sum[kMaxShadowDenoiseLayers], weights[kMaxShadowDenoiseLayers];
+  float centre[kMaxShadowDenoiseLayers], scale[kMaxShadowDenoiseLayers];
+  [[unroll]] for (int l = 0; l < int(kMaxShadowDenoiseLayers); ++l) {
     if (l >= layers) break;
     centre[l] = texelFetch(inputTex, ivec3(p, l), 0).r;
     scale[l] = 1.0 / (kSigmaLuminance * sqrt(texelFetch(varianceTex, ivec3(p, l), 0).r) + kShadowValueEpsilon);
@@ -31,7 +33,7 @@ void main() {
   if (!isSky(sp)) {
     float depthScales[5];
     atrousDepthScales(sp, int(pc.step), depthScales);
-    [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l) sum[l] = weights[l] = 0.0;
+    [[unroll]] for (int l = 0; l < int(kMaxShadowDenoiseLayers); ++l) sum[l] = weights[l] = 0.0;
     for (int j = -2; j <= 2; ++j)
       for (int i = -2; i <= 2; ++i) {
         ivec2 q = p + int(pc.step) * ivec2(i, j);
@@ -43,7 +45,7 @@ void main() {
         float w = b3(i) * b3(j) * (isCentre ? 1.0 : normalWeight(sp, sq));
         if (w <= 0.0) continue;
         float dz = isCentre ? 0.0 : depthExponent(sp, sq, depthScales[atrousDistanceIndex(i, j)]);
-        [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l) {
+        [[unroll]] for (int l = 0; l < int(kMaxShadowDenoiseLayers); ++l) {
           if (l >= layers) break;
           float v = texelFetch(inputTex, ivec3(q, l), 0).r;
           float wl = isCentre ? w : w * exp(-(dz + abs(centre[l] - v) * scale[l]));
@@ -52,6 +54,6 @@ void main() {
         }
       }
   }
-  [[unroll]] for (int l = 0; l < int(kMaxShadowLights); ++l)
+  [[unroll]] for (int l = 0; l < int(kMaxShadowDenoiseLayers); ++l)
     if (l < layers) imageStore(outVisibility, ivec3(p, l), vec4(sum[l] / weights[l]));
 }

@@ -9,7 +9,7 @@
 //   α = max(1/(1+n), αmin); static: αmin = 0, no clamp; moving: αmin = 0.2 and the history is
 //   clamped to the 3×3 min/max of the new visibility.
 // Also writes the variance of each layer for the à-trous value weight (shared/denoise.h). The
-// per-layer loop runs to the constant kMaxShadowLights, unrolled.
+// per-layer loop runs to the constant kMaxShadowDenoiseLayers, unrolled.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform usampler2D surfaceTex;
 layout(set = 0, binding = 1) uniform usampler2D prevSurfaceTex;
@@ -65,7 +65,7 @@ void main() {
     if (!isSky(sq)) spatialWeight[k] = k == 4 ? 1.0 : geometryWeight(cur, sq, vec2(o));
   }
 
-  [[unroll]] for (int layer = 0; layer < int(kMaxShadowLights); ++layer) {
+  [[unroll]] for (int layer = 0; layer < int(kMaxShadowDenoiseLayers); ++layer) {
     if (layer >= layers) break;
     float fresh = texelFetch(rawTex, ivec3(p, layer), 0).r;
     float value = fresh;

@@ -10,11 +10,14 @@
 //
 // Cost: every pass is 8×8 workgroups of texelFetch from L1/L2-resident neighbourhoods, so each
 // is bound by its fetches per pixel; the guide every tap reads is 8 B (an RG32UI surface texel,
-// one full-rate fetch). Shadows: temporal (reprojection once per pixel, all lights in one
-// invocation) + 3 à-trous (geometry weights once per tap for all lights) = 4 dispatches. SVGF:
-// temporal with the variance estimate + 5 à-trous = 6 dispatches (7 before the variance pass was
-// folded into the temporal one). Measured on an H200 at 1080p before these changes (16 B guide,
-// separate variance pass): 0.79 ms a shadow denoiser, 0.73–0.97 ms an SVGF.
+// one full-rate fetch) and also carries SVGF's sharp flag. Shadows: temporal (reprojection once per
+// pixel, all layers in one invocation) + 3 à-trous (geometry weights once per tap for all layers)
+// = 4 dispatches; the hybrid gives AO as one more layer, so lights and AO share these 4 (8 before).
+// SVGF: temporal with the variance estimate + 5 à-trous = 6 dispatches (7 before the variance pass
+// was folded into the temporal one); its à-trous tile loads guide + signal per texel (2; the
+// material image was a third before the sharp flag moved into the guide). Measured on an H200 at 1080p before
+// these changes (16 B guide, separate variance pass, AO its own shadow-denoiser run): 0.79 ms a
+// shadow denoiser, 0.79 ms the AO one, 0.73–0.97 ms an SVGF.
 #include <string>
 
 #include <volk.h>
@@ -73,14 +76,16 @@ struct HistoryPair {
   graph::ImageHandle previous, next;  // read, written (never the same image)
 };
 
-// A. The surface image from the G-buffer (depth D32 or R32F reversed Z, normals, id), written into
-// `out` (kSurfaceFormat, usually a History's next image). zNear/zFar: the camera's planes.
+// A. The surface image from the G-buffer (depth D32 or R32F reversed Z, normals, id, material: .r
+// perceptual roughness, ≤ kSharpRoughness marks the texel sharp for SVGF), written into `out`
+// (kSurfaceFormat, usually a History's next image). zNear/zFar: the camera's planes.
 graph::ImageHandle writeSurface(graph::RenderGraph& graph, const DenoiseInputs& in, graph::ImageHandle depth,
-                                graph::ImageHandle normals, graph::ImageHandle id, graph::ImageHandle out, float zNear,
-                                float zFar);
+                                graph::ImageHandle normals, graph::ImageHandle id, graph::ImageHandle material,
+                                graph::ImageHandle out, float zNear, float zFar);
 
-// C. Shadow denoiser, also for AO (any 0/1 visibility). raw: R16F array, one layer per light;
-// history: shadowHistoryDesc images. name: prefix of its passes and images.
+// C. Shadow denoiser, also for AO (any 0/1 visibility). raw: R16F array, one layer per light (the
+// hybrid adds AO as the last layer; at most gpu::kMaxShadowDenoiseLayers); history:
+// shadowHistoryDesc images. name: prefix of its passes and images.
 struct ShadowDenoised {
   graph::ImageHandle temporal;  // = history.next (running means; layer L holds n)
   graph::ImageHandle variance;  // R16F array: per-light variance for the à-trous value weight
@@ -102,7 +107,7 @@ graph::ImageHandle shadowAtrous(graph::RenderGraph& graph, const DenoiseInputs& 
                                 uint32_t lights, uint32_t step, const std::string& name = "shadow");
 
 // D. SVGF for a radiance signal (RGBA16F). name: prefix of its passes and images ("reflection").
-// material: the G-buffer material image (.r perceptual roughness; ≤ 0.05 stays sharp).
+// Sharp surface texels (mirrors, glass: writeSurface's material test) stay unfiltered.
 struct RadianceDenoised {
   graph::ImageHandle temporal;  // = color.next after the temporal pass (rgb the running mean when static, a n)
   graph::ImageHandle moments;   // = moments.next (μ1, μ2)
@@ -111,8 +116,8 @@ struct RadianceDenoised {
   graph::ImageHandle denoised;  // RGBA16F, rgb denoised radiance (a: its variance)
 };
 RadianceDenoised denoiseRadiance(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
-                                 SurfacePair surface, graph::ImageHandle motion, graph::ImageHandle material,
-                                 graph::ImageHandle raw, HistoryPair color, HistoryPair moments, TemporalState state);
+                                 SurfacePair surface, graph::ImageHandle motion, graph::ImageHandle raw,
+                                 HistoryPair color, HistoryPair moments, TemporalState state);
 // The temporal pass with the variance estimate: writes color.next, moments.next and `out` (an
 // image from createSvgfImage: rgb colour, a variance; returned).
 graph::ImageHandle svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
@@ -122,7 +127,7 @@ graph::ImageHandle svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& 
 // a valid `history` receives the output too (iteration 1 while moving).
 graph::ImageHandle createSvgfImage(graph::RenderGraph& graph, VkExtent2D size, const std::string& name);
 graph::ImageHandle svgfAtrous(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
-                              graph::ImageHandle surface, graph::ImageHandle material, graph::ImageHandle input,
-                              graph::ImageHandle output, uint32_t step, graph::ImageHandle history = {});
+                              graph::ImageHandle surface, graph::ImageHandle input, graph::ImageHandle output,
+                              uint32_t step, graph::ImageHandle history = {});
 
 }  // namespace rayster::render

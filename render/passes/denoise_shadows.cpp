@@ -79,7 +79,7 @@ graph::ImageHandle shadowAtrous(graph::RenderGraph& graph, const DenoiseInputs& 
 ShadowDenoised denoiseShadows(graph::RenderGraph& graph, const DenoiseInputs& in, SurfacePair surface,
                               graph::ImageHandle motion, graph::ImageHandle raw, HistoryPair history,
                               TemporalState state, const std::string& name) {
-  const uint32_t lights = std::min(graph.imageDesc(raw).layers, gpu::kMaxShadowLights);
+  const uint32_t lights = std::min(graph.imageDesc(raw).layers, gpu::kMaxShadowDenoiseLayers);
   ShadowDenoised out = shadowTemporal(graph, in, surface, motion, raw, history, lights, state, name);
   // Ping-pong between two transients; the last iteration writes "<name>-denoised".
   const graph::ImageHandle work[2] = {createShadowImage(graph, in.size, lights, name + "-atrous"),

@@ -26,7 +26,7 @@ rhi::ImageDesc svgfMomentsHistoryDesc(VkExtent2D size) {
 
 DenoisePipelines DenoisePipelines::create(rhi::Context& ctx) {
   DenoisePipelines p;
-  const rhi::Binding surface[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorage}};
+  const rhi::Binding surface[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorage}, {4, kSampled}};
   p.surface = rhi::createComputePipeline(ctx, "surface.comp", surface, sizeof(gpu::SurfacePush));
   const rhi::Binding shadowTemporal[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled},
                                          {4, kSampled}, {5, kStorage}, {6, kStorage}};
@@ -36,20 +36,20 @@ DenoisePipelines DenoisePipelines::create(rhi::Context& ctx) {
   const rhi::Binding svgfTemporal[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled},
                                        {5, kSampled}, {6, kStorage}, {7, kStorage}, {8, kStorage}};
   p.svgfTemporal = rhi::createComputePipeline(ctx, "svgf_temporal.comp", svgfTemporal, sizeof(gpu::TemporalPush));
-  const rhi::Binding svgfAtrous[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorage}, {4, kStorage}};
-  p.svgfAtrous = rhi::createComputePipeline(ctx, "svgf_atrous.comp", std::span(svgfAtrous, 4), sizeof(gpu::AtrousPush));
+  const rhi::Binding svgfAtrous[] = {{0, kSampled}, {1, kSampled}, {2, kStorage}, {3, kStorage}};
+  p.svgfAtrous = rhi::createComputePipeline(ctx, "svgf_atrous.comp", std::span(svgfAtrous, 3), sizeof(gpu::AtrousPush));
   p.svgfAtrousHistory =
       rhi::createComputePipeline(ctx, "svgf_atrous_history.comp", svgfAtrous, sizeof(gpu::AtrousPush));
   return p;
 }
 
 graph::ImageHandle writeSurface(graph::RenderGraph& graph, const DenoiseInputs& in, graph::ImageHandle depth,
-                                graph::ImageHandle normals, graph::ImageHandle id, graph::ImageHandle out, float zNear,
-                                float zFar) {
+                                graph::ImageHandle normals, graph::ImageHandle id, graph::ImageHandle material,
+                                graph::ImageHandle out, float zNear, float zFar) {
   graph.addPass(
       "denoise-surface",
       [&](graph::PassBuilder& b) {
-        for (auto h : {depth, normals, id}) b.read(h, graph::Use::SampledCompute);
+        for (auto h : {depth, normals, id, material}) b.read(h, graph::Use::SampledCompute);
         b.write(out, graph::Use::StorageWriteCompute);
       },
       [=](graph::PassContext& pc) {
@@ -60,6 +60,7 @@ graph::ImageHandle writeSurface(graph::RenderGraph& graph, const DenoiseInputs& 
             .sampledImage(1, pc.image(normals).view(), in.nearest)
             .sampledImage(2, pc.image(id).view(), in.nearest)
             .storageImage(3, pc.image(out).view())
+            .sampledImage(4, pc.image(material).view(), in.nearest)
             .push(pc.cmd, pipe);
         const gpu::SurfacePush push{{in.size.width, in.size.height}, zNear, zFar};
         vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), &push);

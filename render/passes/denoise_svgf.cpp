@@ -52,12 +52,12 @@ graph::ImageHandle svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& 
 }
 
 graph::ImageHandle svgfAtrous(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
-                              graph::ImageHandle surface, graph::ImageHandle material, graph::ImageHandle input,
-                              graph::ImageHandle output, uint32_t step, graph::ImageHandle history) {
+                              graph::ImageHandle surface, graph::ImageHandle input, graph::ImageHandle output,
+                              uint32_t step, graph::ImageHandle history) {
   graph.addPass(
       name + "-atrous-" + std::to_string(step),
       [&](graph::PassBuilder& b) {
-        for (auto h : {surface, material, input}) b.read(h, graph::Use::SampledCompute);
+        for (auto h : {surface, input}) b.read(h, graph::Use::SampledCompute);
         b.write(output, graph::Use::StorageWriteCompute);
         if (history.valid()) b.write(history, graph::Use::StorageReadWriteCompute);  // keeps its a (n)
       },
@@ -66,10 +66,9 @@ graph::ImageHandle svgfAtrous(graph::RenderGraph& graph, const DenoiseInputs& in
         vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
         rhi::DescriptorWriter w;
         w.sampledImage(0, pc.image(surface).view(), in.nearest)
-            .sampledImage(1, pc.image(material).view(), in.nearest)
-            .sampledImage(2, pc.image(input).view(), in.nearest)
-            .storageImage(3, pc.image(output).view());
-        if (history.valid()) w.storageImage(4, pc.image(history).view());
+            .sampledImage(1, pc.image(input).view(), in.nearest)
+            .storageImage(2, pc.image(output).view());
+        if (history.valid()) w.storageImage(3, pc.image(history).view());
         w.push(pc.cmd, pipe);
         const gpu::AtrousPush push{{in.size.width, in.size.height}, 1, step, 0, 0, 0, 0};
         dispatch(pc.cmd, pipe, in.size, &push, sizeof(push));
@@ -78,8 +77,8 @@ graph::ImageHandle svgfAtrous(graph::RenderGraph& graph, const DenoiseInputs& in
 }
 
 RadianceDenoised denoiseRadiance(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,
-                                 SurfacePair surface, graph::ImageHandle motion, graph::ImageHandle material,
-                                 graph::ImageHandle raw, HistoryPair color, HistoryPair moments, TemporalState state) {
+                                 SurfacePair surface, graph::ImageHandle motion, graph::ImageHandle raw,
+                                 HistoryPair color, HistoryPair moments, TemporalState state) {
   RadianceDenoised out;
   // Two working images: the temporal pass writes the first, the iterations ping-pong between them.
   const graph::ImageHandle work[2] = {createSvgfImage(graph, in.size, name + "-atrous"),
@@ -94,7 +93,7 @@ RadianceDenoised denoiseRadiance(graph::RenderGraph& graph, const DenoiseInputs&
     // Iteration 1's output is the colour history (SVGF paper) while moving; a static camera keeps
     // the exact running mean the temporal pass wrote, so the still frame converges to the truth.
     const graph::ImageHandle history = i == 0 && state.moving ? color.next : graph::ImageHandle{};
-    input = svgfAtrous(graph, in, name, surface.current, material, input, work[(left + 1) % 2], 1u << i, history);
+    input = svgfAtrous(graph, in, name, surface.current, input, work[(left + 1) % 2], 1u << i, history);
   }
   out.denoised = input;
   return out;

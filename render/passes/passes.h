@@ -50,8 +50,10 @@ struct GBuffer {
 GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in);
 GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in);
 
-// One visibility layer per shadowed light (R16F array), 1 sample per pixel.
-graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t lights);
+// One visibility layer per shadowed light (R16F array), 1 sample per pixel, and `extraLayers` more
+// that other passes fill (the AO layer: traceAo into this image), so one denoiser run takes them all.
+graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t lights,
+                                uint32_t extraLayers = 0);
 
 struct RawRayPipelines;
 // Raw-rate twins (RenderSettings::rawRays, passes "raw-gbuffer-traced" and "raw-rt-shadows"): the
@@ -73,9 +75,12 @@ RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, co
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
 // Denoised by denoiseRadiance() (render/passes/denoise.h).
 
-// Ambient occlusion (one-layer R16F array, 1 unoccluded), 1 sample per pixel; 1 everywhere when
-// FrameConstants::effectFlags lacks kEffectAo.
-graph::ImageHandle traceAo(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
+// Ambient occlusion (R16F array, 1 unoccluded), 1 sample per pixel; 1 everywhere when
+// FrameConstants::effectFlags lacks kEffectAo. Written into layer FrameConstants::aoLayer of
+// `into` (the shadow visibility image, whose denoiser then takes AO as its last layer; returned),
+// or without it into a new one-layer image ("ao-raw"; aoLayer must be 0 then).
+graph::ImageHandle traceAo(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
+                           graph::ImageHandle into = {});
 // One-bounce indirect diffuse irradiance E (RGBA16F, demodulated), 1 sample per pixel; 0 when
 // FrameConstants::effectFlags lacks kEffectIndirect.
 graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);

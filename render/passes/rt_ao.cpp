@@ -5,11 +5,15 @@
 
 namespace rayster::render {
 
-graph::ImageHandle traceAo(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb) {
-  // One layer of an array image, so the shadow accumulation pass accumulates it unchanged.
-  graph::ImageHandle ao = graph.createImage(
-      "ao-raw", {kVisibilityFormat, in.size.width, in.size.height, 1,
-                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, true});
+graph::ImageHandle traceAo(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
+                           graph::ImageHandle into) {
+  // A layer of an array image, so the shadow denoiser takes it unchanged: the shadow image's AO
+  // layer (one denoiser run for lights and AO), or an image of its own.
+  graph::ImageHandle ao = into.valid() ? into
+                                       : graph.createImage("ao-raw", {kVisibilityFormat, in.size.width, in.size.height, 1,
+                                                                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                                                          VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                                                      true});
   graph.addPass(
       "rt-ao",
       [&](graph::PassBuilder& b) {

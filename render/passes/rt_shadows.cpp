@@ -5,8 +5,9 @@
 
 namespace rayster::render {
 
-graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t lights) {
-  const uint32_t layers = std::max(lights, 1u);
+graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t lights,
+                                uint32_t extraLayers) {
+  const uint32_t layers = std::max(lights + extraLayers, 1u);
   graph::ImageHandle vis = graph.createImage(
       "shadow-raw", {kVisibilityFormat, in.size.width, in.size.height, layers,
                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, true});

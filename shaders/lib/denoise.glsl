@@ -6,7 +6,9 @@
 
 #include "shared/denoise.h"
 
-// Surface texel (RG32UI, 8 B): x linear view depth (float bits; 0 for sky), y bits 0–19 the oct
+// Surface texel (RG32UI, 8 B): x linear view depth (float bits; 0 for sky) with the sign bit set for
+// a sharp surface (mirror or glass, roughness ≤ kSharpRoughness, which SVGF's à-trous neither
+// filters nor takes as a neighbour: the flag rides on the guide every tap reads anyway), y bits 0–19 the oct
 // shading normal (2 × snorm10), bits 20–31 the low 12 bits of the id. Precision: the depth stays
 // fp32, since the depth weight's ε is 1e-4 absolute and coarser depths would cut planes along
 // their rounding steps; 10-bit oct normals err by ≤ ~0.25°, far below the normal weight's
@@ -21,16 +23,20 @@ struct Surface {
   float zGrad;  // only from loadSurface (decodeSurface leaves 0)
   vec3 n;
   uint id;
+  bool sharp;  // mirror or glass (never set on sky)
 };
 
-uvec2 encodeSurface(float z, vec2 oct, uint id) {
+const uint kSurfaceSharpBit = 0x80000000u;  // in x: the sign of the (positive) depth
+
+uvec2 encodeSurface(float z, vec2 oct, uint id, bool sharp) {
   uvec2 q = uvec2(ivec2(round(clamp(oct, -1.0, 1.0) * 511.0))) & 0x3FFu;
-  return uvec2(floatBitsToUint(z), q.x | (q.y << 10) | (id << 20));
+  return uvec2(floatBitsToUint(z) | (sharp ? kSurfaceSharpBit : 0u), q.x | (q.y << 10) | (id << 20));
 }
 
 Surface decodeSurface(uvec2 t) {
   Surface s;
-  s.z = uintBitsToFloat(t.x);
+  s.z = uintBitsToFloat(t.x & ~kSurfaceSharpBit);
+  s.sharp = (t.x & kSurfaceSharpBit) != 0u;
   s.zGrad = 0.0;
   ivec2 q = ivec2(bitfieldExtract(int(t.y), 0, 10), bitfieldExtract(int(t.y), 10, 10));
   s.n = octDecode(clamp(vec2(q) / 511.0, -1.0, 1.0));
@@ -47,7 +53,7 @@ float surfaceSlope(usampler2D tex, ivec2 p, ivec2 axis, float z, uvec2 size) {
   for (int s = -1; s <= 1; s += 2) {
     ivec2 q = p + s * axis;
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(size)))) continue;
-    uint bits = texelFetch(tex, q, 0).x;
+    uint bits = texelFetch(tex, q, 0).x & ~kSurfaceSharpBit;
     if (bits != 0u) g = min(g, abs(uintBitsToFloat(bits) - z));
   }
   return g < 1.0e30 ? g : 0.0;

@@ -6,21 +6,20 @@
 // SVGF, one à-trous iteration (TECHNIQUES.md §12): 5×5 B3-spline taps at p + step·(i, j), weights
 // w_z (σz = 1), w_n (σn = 128) and w_l = exp(−|l_p − l_q| / (σl·sqrt(g3×3(var_p)) + ε)) (σl = 4).
 // Colour Σ h·w·c / Σ h·w; variance Σ (h·w)²·var / (Σ h·w)², passed on in .a. Mirrors and glass
-// (roughness ≤ kSharpRoughness) are passed through and never used as neighbours of rougher pixels.
+// (roughness ≤ kSharpRoughness: the surface texel's sharp flag, so nothing reads the material image)
+// are passed through and never used as neighbours of rougher pixels.
 // With SVGF_WRITE_HISTORY (iteration 1 while moving) the output also becomes the colour history
 // (rgb; its a, the history length n written by the temporal pass, is kept).
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 0) uniform usampler2D surfaceTex;
-layout(set = 0, binding = 1) uniform sampler2D materialTex;  // .r perceptual roughness
-layout(set = 0, binding = 2) uniform sampler2D inputTex;     // rgb colour, a variance
-layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D outColorVariance;
+layout(set = 0, binding = 0) uniform usampler2D surfaceTex;  // with the sharp flag
+layout(set = 0, binding = 1) uniform sampler2D inputTex;     // rgb colour, a variance
+layout(set = 0, binding = 2, rgba16f) uniform writeonly image2D outColorVariance;
 #ifdef SVGF_WRITE_HISTORY
-layout(set = 0, binding = 4, rgba32f) uniform image2D outHistory;
+layout(set = 0, binding = 3, rgba32f) uniform image2D outHistory;
 #endif
 layout(push_constant, scalar) uniform Push { AtrousPush pc; };
 
 bool inside(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(pc.size))); }
-bool sharp(ivec2 q) { return texelFetch(materialTex, q, 0).r <= kSharpRoughness; }
 
 // 3×3 Gaussian (1/4, 1/2, 1/4) of the variance around p.
 float blurredVariance(ivec2 p) {
@@ -42,7 +41,7 @@ void main() {
   vec4 centre = texelFetch(inputTex, p, 0);
   Surface sp = loadSurface(surfaceTex, p, pc.size);
   vec4 result = centre;
-  if (!isSky(sp) && !sharp(p)) {
+  if (!isSky(sp) && !sp.sharp) {
     float lp = luminance(centre.rgb);
     float lumScale = 1.0 / (kSigmaLuminance * sqrt(blurredVariance(p)) + kLuminanceEpsilon);
     float depthScales[5];
@@ -57,7 +56,7 @@ void main() {
         float w = b3(i) * b3(j);
         if (i != 0 || j != 0) {
           Surface sq = decodeSurface(texelFetch(surfaceTex, q, 0).xy);
-          if (isSky(sq) || sharp(q)) continue;
+          if (isSky(sq) || sq.sharp) continue;
           w *= normalWeight(sp, sq) * exp(-(depthExponent(sp, sq, depthScales[atrousDistanceIndex(i, j)]) +
                                              abs(lp - luminance(c.rgb)) * lumScale));
         }

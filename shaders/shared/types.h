@@ -212,6 +212,10 @@ struct FrameConstants {
   uint environmentCdfHeight;
   uint maxDepth;               // path vertices after the camera (--max-depth)
   uint maxSpecularBounces;     // specular.rgen traces at most this many rays per path (1..kMaxSpecularBounces)
+  // Layer of the AO image that rt-ao writes and lighting reads: shadowLightCount when AO is on in
+  // the hybrid (AO is the shadow denoiser's last layer, renderer_frame.cpp), else 0 (its own image).
+  uint aoLayer;
+  uint pad3;
 };
 
 // GPU culling (render/passes/cull.cpp, TECHNIQUES.md §20): one row per GpuScene::Draw, in order.
@@ -280,7 +284,7 @@ static_assert(offsetof(FrameConstants, mirrorRoughness) == 572);
 static_assert(sizeof(EmissiveTriangle) == 80);
 static_assert(offsetof(FrameConstants, emissiveTriangles) == 592);
 static_assert(offsetof(FrameConstants, maxSpecularBounces) == 628);
-static_assert(sizeof(FrameConstants) == 632);
+static_assert(sizeof(FrameConstants) == 640);
 static_assert(sizeof(DrawRecord) == 40);
 static_assert(offsetof(DrawRecord, aabbMin) == 16);
 static_assert(sizeof(CullPush) == 56);

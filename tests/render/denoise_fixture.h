@@ -147,8 +147,9 @@ class Denoise : public ::testing::Test {
       auto depth = upload(name + "-depth", VK_FORMAT_R32_SFLOAT, 1, g.depth);
       auto normals = upload(name + "-normals", VK_FORMAT_R16G16B16A16_SNORM, 1, g.normals);
       auto id = upload(name + "-id", VK_FORMAT_R32_UINT, 1, g.id);
+      auto material = upload(name + "-material", VK_FORMAT_R8G8B8A8_UNORM, 1, g.material);
       if (!out.valid()) out = graph.createImage(name, surfaceDesc(kSize));
-      return writeSurface(graph, t_.inputs(), depth, normals, id, out, kNear, kFar);
+      return writeSurface(graph, t_.inputs(), depth, normals, id, material, out, kNear, kFar);
     }
     // Filled by run(): the image's bytes, every layer.
     std::vector<uint8_t>& download(graph::ImageHandle image) {

@@ -23,6 +23,7 @@ struct Surf {
   float z = 0, zGrad = 0;
   vec3 n{0.0f};
   uint32_t id = gpu::kBackgroundId;
+  bool sharp = false;  // mirror or glass: roughness ≤ kSharpRoughness (the depth's sign bit)
   bool sky() const { return id == gpu::kBackgroundId; }
 };
 
@@ -43,10 +44,12 @@ inline float snorm10(int v) { return std::clamp(v / 511.0f, -1.0f, 1.0f); }
 inline int toSnorm10(float v) { return int(std::lround(std::clamp(v, -1.0f, 1.0f) * 511.0f)); }
 inline int signExtend10(uint32_t v) { return int(v & 0x3FFu) - (v & 0x200u ? 1024 : 0); }
 
-// The surface texel (RG32UI): z float bits (0: sky); oct normal 2 × snorm10 | id's low 12 bits.
+// The surface texel (RG32UI): z float bits (0: sky) | sharp in the sign bit; oct normal 2 × snorm10 |
+// id's low 12 bits.
 inline Surf decodeTexel(const uint32_t* t) {
   Surf s;
-  s.z = std::bit_cast<float>(t[0]);
+  s.z = std::bit_cast<float>(t[0] & 0x7FFFFFFFu);
+  s.sharp = (t[0] >> 31) != 0;
   s.n = octDecode(vec2(snorm10(signExtend10(t[1])), snorm10(signExtend10(t[1] >> 10))));
   s.id = t[0] == 0 ? gpu::kBackgroundId : t[1] >> 20;
   return s;
@@ -92,6 +95,7 @@ inline std::vector<Surf> surfaces(const GBufferCpu& g, float zNear, float zFar) 
     if (g.id[i] == gpu::kBackgroundId) continue;
     s.id = g.id[i] & 0xFFFu;
     s.z = linearDepth(g.depth[i], zNear, zFar);
+    s.sharp = g.material[i * 4] / 255.0f <= gpu::kSharpRoughness;
     s.n = octDecode(vec2(snorm10(toSnorm10(snorm16(g.normals[i * 4]))), snorm10(toSnorm10(snorm16(g.normals[i * 4 + 1])))));
   }
   addSlopes(out, g.w, g.h);

@@ -21,6 +21,7 @@ TEST_F(Denoise, SurfaceMatchesCpu) {
   const auto cpu = ref::surfaces(g, kNear, kFar);
   for (size_t i = 0; i < kPixels; ++i) {
     ASSERT_EQ(gpu[i].id, cpu[i].id) << i;
+    ASSERT_EQ(gpu[i].sharp, cpu[i].sharp) << i;
     EXPECT_NEAR(gpu[i].z, cpu[i].z, 1e-5f * cpu[i].z) << i;
     EXPECT_NEAR(gpu[i].zGrad, cpu[i].zGrad, 1e-4f) << i;
     if (!cpu[i].sky()) {
@@ -28,6 +29,8 @@ TEST_F(Denoise, SurfaceMatchesCpu) {
     }
   }
   EXPECT_NEAR(cpu[kW * 5 + 3].z, 2.0f + 0.3f + 0.25f, 1e-4f) << "linear depth from reversed Z";
+  EXPECT_TRUE(cpu[kW * 13 + 12].sharp) << "the mirror pixels (right plane, rows ≥ 12) are flagged sharp";
+  EXPECT_FALSE(cpu[kW * 5 + 3].sharp);
   EXPECT_NEAR(cpu[kW * 5 + 3].zGrad, 0.15f, 1e-4f) << "slope = |dz/dx| + |dz/dy|";
 }
 
@@ -147,11 +150,10 @@ TEST_F(Denoise, SvgfAtrousMatchesCpu) {
     for (bool history : {false, true}) {
       Frame fr(*this);
       auto surface = fr.surface("surface", g);
-      auto material = fr.upload("material", VK_FORMAT_R8G8B8A8_UNORM, 1, g.material);
       auto in = fr.uploadHalves("in", kSvgfWorkingFormat, 1, flatten(input));
       auto out = createSvgfImage(fr.graph, kSize, "out");
       auto hist = history ? fr.graph.createImage("hist", svgfColorHistoryDesc(kSize)) : graph::ImageHandle{};
-      auto& bytes = fr.download(svgfAtrous(fr.graph, inputs(), "test", surface, material, in, out, step, hist));
+      auto& bytes = fr.download(svgfAtrous(fr.graph, inputs(), "test", surface, in, out, step, hist));
       std::vector<uint8_t>* histBytes = history ? &fr.download(hist) : nullptr;
       auto& sBytes = fr.download(surface);
       fr.run();
@@ -168,6 +170,54 @@ TEST_F(Denoise, SvgfAtrousMatchesCpu) {
       // Mirror pixels (right plane, rows ≥ 12) keep their value: the spatial filter skips them.
       EXPECT_NEAR(expected[kW * 13 + 12].r, input[kW * 13 + 12].r, 1e-6f);
     }
+  }
+}
+
+// The hybrid denoises AO as the shadow denoiser's last layer (renderer_frame.cpp): each layer is
+// filtered on its own (only the geometry weights and the history length are shared), so layers
+// denoised beside the most layers there can be (every shadowed light and AO) equal the same layers
+// denoised by a run of their own, over frames with history, static and moving.
+TEST_F(Denoise, ShadowLayersAreDenoisedIndependently) {
+  constexpr uint32_t kAll = gpu::kMaxShadowDenoiseLayers;
+  static_assert(kAll == gpu::kMaxShadowLights + 1);
+  const ref::GBufferCpu g = makeGBuffer();
+  History& surfaceHistory = history(surfaceDesc(kSize), "surface");
+  History& allHistory = history(shadowHistoryDesc(kSize, kAll), "all");
+  History& pairHistory = history(shadowHistoryDesc(kSize, 2), "pair");
+  for (uint32_t f = 0; f < 4; ++f) {
+    std::vector<float> all = noise(kPixels * kAll, 700 + f);
+    for (float& x : all) x = viaHalf(x);
+    // The pair: the first and the last layer of `all`.
+    std::vector<float> pair(all.begin(), all.begin() + kPixels);
+    pair.insert(pair.end(), all.end() - kPixels, all.end());
+    Frame fr(*this);
+    const SurfacePair s{fr.surface("surface", g, surfaceHistory.next(fr.graph, "surface", f)),
+                        surfaceHistory.previous(fr.graph, "surface", f)};
+    auto motion = fr.uploadHalves("motion", kMotionFormat, 1, std::vector<float>(kPixels * 2, 0.0f));
+    auto run = [&](const std::vector<float>& v, uint32_t layers, History& h, const std::string& name) {
+      auto raw = fr.uploadHalves(name + "-raw", VK_FORMAT_R16_SFLOAT, layers, v);
+      const ShadowDenoised d = denoiseShadows(fr.graph, inputs(), s, motion, raw,
+                                              {h.previous(fr.graph, name, f), h.next(fr.graph, name, f)},
+                                              {f >= 2, f == 0}, name);
+      return std::pair{&fr.download(d.temporal), &fr.download(d.denoised)};
+    };
+    const auto [allTemporal, allDenoised] = run(all, kAll, allHistory, "all");
+    const auto [pairTemporal, pairDenoised] = run(pair, 2, pairHistory, "pair");
+    fr.run();
+    const std::vector<float> a = halvesOf(*allDenoised), p = halvesOf(*pairDenoised);
+    const std::vector<float> at = floatsOf(*allTemporal), pt = floatsOf(*pairTemporal);
+    ASSERT_EQ(a.size(), kPixels * kAll);
+    ASSERT_EQ(at.size(), kPixels * (kAll + 1));
+    for (size_t i = 0; i < kPixels; ++i) {
+      ASSERT_EQ(a[i], p[i]) << "first layer, frame " << f << " texel " << i;
+      ASSERT_EQ(a[kPixels * (kAll - 1) + i], p[kPixels + i]) << "last layer, frame " << f << " texel " << i;
+      ASSERT_EQ(at[kPixels * (kAll - 1) + i], pt[kPixels + i]) << "last temporal, frame " << f << " texel " << i;
+      ASSERT_EQ(at[kPixels * kAll + i], pt[kPixels * 2 + i]) << "history length, frame " << f << " texel " << i;
+    }
+    // Not a trivial pass-through: the filter changed the noisy input somewhere.
+    size_t changed = 0;
+    for (size_t i = kW; i < kPixels; ++i) changed += a[kPixels * (kAll - 1) + i] != all[kPixels * (kAll - 1) + i];
+    EXPECT_GT(changed, kPixels / 2) << "frame " << f;
   }
 }
 
@@ -190,12 +240,11 @@ class DenoiseRun {
     auto motion = fr.uploadHalves("motion", kMotionFormat, 1, std::vector<float>(kPixels * 2, 0.0f));  // static
     auto vis = fr.uploadHalves("vis", VK_FORMAT_R16_SFLOAT, kLights, visibility);
     auto rad = fr.uploadHalves("rad", VK_FORMAT_R16G16B16A16_SFLOAT, 1, flatten(radiance));
-    auto material = fr.upload("material", VK_FORMAT_R8G8B8A8_UNORM, 1, g.material);
     ShadowDenoised sh =
         denoiseShadows(fr.graph, in, s, motion, vis,
                        {shadow_.previous(fr.graph, "shadow", f_), shadow_.next(fr.graph, "shadow", f_)}, state);
     RadianceDenoised rd =
-        denoiseRadiance(fr.graph, in, "reflection", s, motion, material, rad,
+        denoiseRadiance(fr.graph, in, "reflection", s, motion, rad,
                         {color_.previous(fr.graph, "color", f_), color_.next(fr.graph, "color", f_)},
                         {moments_.previous(fr.graph, "moments", f_), moments_.next(fr.graph, "moments", f_)}, state);
     auto& a = fr.download(sh.temporal);

@@ -108,6 +108,28 @@ TEST(Ao, OpenPlaneIsUnoccluded) {
     for (size_t i = 0; i < img[name].rgba.size(); i += 4) ASSERT_EQ(img[name].rgba[i], 1.0f) << name << " texel " << i / 4;
 }
 
+// The hybrid denoises AO as the shadow denoiser's last layer: beside the scene's shadow layer, or
+// alone in many-light mode (--shadow-lights 0 traces no shadow layer). The layers never mix, so
+// both give the same AO bit for bit; with AO off it stays 1 everywhere.
+TEST(Ao, SameWithOrWithoutShadowLayersAndOneWhenOff) {
+  auto dir = testDir();
+  const std::string aovs = "ao-raw,ao-denoised";
+  auto withShadows = renderAovs(dir, "builtin:whitted", "--frames 3 --seed 4", aovs);
+  auto alone = renderAovs(dir, "builtin:whitted", "--frames 3 --seed 4 --shadow-lights 0", aovs);
+  for (const std::string name : {"ao-raw", "ao-denoised"}) {
+    ASSERT_EQ(withShadows[name].rgba.size(), alone[name].rgba.size()) << name;
+    ASSERT_FALSE(withShadows[name].rgba.empty()) << name;
+    for (size_t i = 0; i < alone[name].rgba.size(); i += 4)
+      ASSERT_EQ(withShadows[name].rgba[i], alone[name].rgba[i]) << name << " texel " << i / 4;
+  }
+  const double mean = meanChannel(withShadows["ao-denoised"], 0);
+  EXPECT_GT(mean, 0.2);
+  EXPECT_LT(mean, 0.99) << "the whitted scene has contact occlusion";
+  auto off = renderAovs(dir, "builtin:whitted", "--frames 2 --ao off", aovs);
+  for (const char* name : {"ao-raw", "ao-denoised"})
+    for (size_t i = 0; i < off[name].rgba.size(); i += 4) ASSERT_EQ(off[name].rgba[i], 1.0f) << name << " texel " << i / 4;
+}
+
 TEST(Ao, FloorBesideAWallIsHalfOccluded) {
   // An (almost) infinite wall at x = 0 over a floor at x > 0: with an unlimited radius, half of the
   // cosine lobe of every floor point faces the wall (and of every wall point, the floor): AO → 0.5.
