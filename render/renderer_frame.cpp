@@ -146,7 +146,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
     traceRawPrimary(graph, in, *rawPipelines);
     traceRawShadows(graph, in, gb, shadowLights(), *rawPipelines);
-    o.rawTwins = traceRawTwins(graph, in, gb, manyLights, *rawPipelines);
+    o.rawTwins = traceRawTwins(graph, in, gb, manyLights, indirectQuarter(s), *rawPipelines);
   }
   // Many-light mode traces no shadow layers: lighting reads none, so nothing to denoise.
   o.shadow = o.shadowRaw;
@@ -175,7 +175,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
                           {aoHistory.previous(graph, "ao-history", f), aoHistory.next(graph, "ao-history", f)}, temporal,
                           "ao")
                .denoised;
-  o.indirectRaw = traceIndirect(graph, in, gb);
+  o.indirectRaw = traceIndirect(graph, in, gb, surface.current, indirectQuarter(s));
   o.indirect = o.indirectRaw;
   if (indirectOn(s))
     o.indirect = denoiseRadiance(graph, dn, "indirect", surface, motion, gb.material, o.indirectRaw,
