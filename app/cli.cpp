@@ -105,7 +105,7 @@ int run(int argc, char** argv) {
                      "Surfaces at most this rough reflect as perfect mirrors (default 0.1; negative: none, every "
                      "opaque reflection is VNDF-sampled)")
       ->check(CLI::Range(-1.0f, 1.0f));
-  std::string ao = "on", indirect;
+  std::string ao = "on", indirect, indirectRate = "quarter";
   render->add_option("--ao", ao, "Ray-traced ambient occlusion of ambient and environment light: on (default) or off")
       ->check(CLI::IsMember({"on", "off"}));
   render->add_option("--ao-radius", ro.settings.aoRadius,
@@ -115,6 +115,11 @@ int run(int argc, char** argv) {
                      "One-bounce ray-traced indirect diffuse: on or off (default: on for builtin:whitted and "
                      "builtin:cornell, off otherwise)")
       ->check(CLI::IsMember({"on", "off"}));
+  render->add_option("--indirect-rate", indirectRate,
+                     "Pixels the indirect diffuse traces per frame: quarter (default; one of each 2x2 block, "
+                     "rotating over 4 frames, the rest filled from traced neighbours of similar depth and normal) "
+                     "or full")
+      ->check(CLI::IsMember({"full", "quarter"}));
   render->add_flag("--timings", ro.printTimings, "Print per-pass GPU times");
   render->add_flag("--memory-report", ro.memoryReport,
                    "Print the last frame's images (G-buffer, targets, histories): format, size, bytes, and which "
@@ -243,6 +248,7 @@ int run(int argc, char** argv) {
     }
     ro.settings.ao = ao == "on";
     if (!indirect.empty()) ro.settings.indirect = indirect == "on";
+    ro.settings.indirectRate = indirectRate == "full" ? render::IndirectRate::Full : render::IndirectRate::Quarter;
     ro.validation = validation;
     ro.device = device;
     ro.debugLabels = !noLabels;

@@ -51,6 +51,7 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   j["tonemap"] = render::tonemapperName(o.settings.tonemap);
   j["taa"] = o.settings.taa;
   j["culling"] = o.settings.culling;
+  j["indirect_rate"] = render::indirectRateName(o.settings.indirectRate);
   if (out.visibleDraws >= 0) j["draws"] = {{"visible", out.visibleDraws}, {"total", out.totalDraws}};
   j["max_depth"] = o.settings.maxDepth;
   if (out.rasterGBufferMs >= 0) j["auto"] = {{"raster_gbuffer_ms", out.rasterGBufferMs}, {"traced_gbuffer_ms", out.tracedGBufferMs}};

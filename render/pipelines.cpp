@@ -74,6 +74,8 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   p.tonemap = rhi::createComputePipeline(ctx, "tonemap.comp", tone, 24);
   const rhi::Binding fill[] = {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}};
   p.specularFill = rhi::createComputePipeline(ctx, "specular_fill.comp", fill, 0);
+  const rhi::Binding indirectFill[] = {{0, kUniform}, {1, kStorage}, {2, kSampled}};
+  p.indirectFill = rhi::createComputePipeline(ctx, "indirect_fill.comp", indirectFill, 0);
   if (!ctx.caps().rayTracing()) return p;
 
   // Hit groups by geometry kind (gpu::kHitGroupTriangles, gpu::kHitGroupSpheres): alpha-tested

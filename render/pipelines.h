@@ -32,6 +32,7 @@ struct Pipelines {
   rhi::RayTracingPipeline shadows;
   rhi::RayTracingPipeline specular;  // reflections and refractions (bounce loop)
   rhi::Pipeline specularFill;        // the half-rate glossy pixels specular skipped this frame
+  rhi::Pipeline indirectFill;        // the quarter-rate indirect pixels rt-indirect skipped this frame
   rhi::RayTracingPipeline direct;    // many-light stochastic direct light
   rhi::RayTracingPipeline ao;        // ambient occlusion
   rhi::RayTracingPipeline indirect;  // one-bounce indirect diffuse

@@ -34,7 +34,7 @@ const std::vector<std::string>& aovNames() {
 }
 
 RayCount launchedRays(const std::string& pass, uint32_t width, uint32_t height, uint32_t shadowLayers,
-                      uint32_t lightsPerHit, uint32_t maxDepth) {
+                      uint32_t lightsPerHit, uint32_t maxDepth, IndirectRate indirectRate) {
   const uint64_t pixels = uint64_t(width) * height;
   // traceRayEXT calls per invocation, from the shaders: one primary ray (gbuffer.rgen); one shadow
   // ray per layer (shadows.rgen, one launch layer per shadowed light); one occlusion ray (ao.rgen);
@@ -46,7 +46,9 @@ RayCount launchedRays(const std::string& pass, uint32_t width, uint32_t height, 
   if (pass == "rt-shadows" || pass == "raw-rt-shadows") return {pixels * shadowLayers, false};
   // Raw twins (raw_rays.cpp) count the same; raw-rt-specular replays only the first bounce.
   if (pass == "rt-ao" || pass == "rt-direct" || pass == "raw-rt-ao" || pass == "raw-rt-direct") return {pixels, false};
-  if (pass == "rt-indirect" || pass == "raw-rt-indirect") return {pixels * 2, false};
+  // At quarter rate both launch one invocation per 2×2 block.
+  if (pass == "rt-indirect" || pass == "raw-rt-indirect")
+    return {(indirectRate == IndirectRate::Quarter ? uint64_t((width + 1) / 2) * ((height + 1) / 2) : pixels) * 2, false};
   if (pass == "rt-specular") return {pixels * uint64_t(maxDepth) * (1u + lightsPerHit), false};
   if (pass == "raw-rt-specular") return {pixels * (1u + lightsPerHit), false};
   return {};
@@ -59,6 +61,8 @@ const char* modeName(Mode m) {
     default: return "hybrid";
   }
 }
+
+const char* indirectRateName(IndirectRate r) { return r == IndirectRate::Quarter ? "quarter" : "full"; }
 
 const char* primaryName(Primary p) {
   switch (p) {
@@ -134,7 +138,8 @@ glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::C
   // environment in both modes. The raster mode has neither AO nor indirect light: ambient and the
   // SH environment stand in.
   fc.effectFlags = gpu::kEffectPrefilteredEnv |
-                   (s.mode == Mode::Raster ? 0u : (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u));
+                   (s.mode == Mode::Raster ? 0u : (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u)) |
+                   (indirectQuarter(s) ? gpu::kEffectIndirectQuarter : 0u);
   fc.dfgSlot = gpu.dfgSlot;
   fc.emissiveTriangles = gpu.emissiveTriangles.address();
   fc.environmentCdf = gpu.environmentCdf.address();

@@ -31,6 +31,11 @@ const char* primaryName(Primary p);
 enum class Mode { Hybrid, PathTrace, Raster };
 const char* modeName(Mode m);
 
+// How many pixels rt-indirect traces per frame: all, or one of each 2×2 block (rotating through the
+// block over 4 frames, the rest filled depth- and normal-aware from traced neighbours before SVGF).
+enum class IndirectRate { Full, Quarter };
+const char* indirectRateName(IndirectRate r);
+
 struct RenderSettings {
   uint32_t width = 1280, height = 720;
   uint32_t frames = 16;  // frames rendered; a static camera's denoisers accumulate them all
@@ -77,6 +82,7 @@ struct RenderSettings {
   float aoRadius = -1.0f;  // world units; <= 0: kAoRadiusFraction × the scene bounds' diagonal
   // One-bounce ray-traced indirect diffuse; unset: the scene's indirectByDefault.
   std::optional<bool> indirect;
+  IndirectRate indirectRate = IndirectRate::Quarter;  // --indirect-rate
   // Surface interactions along a path after the camera ray (--max-depth). The path tracer's paths
   // end after this many vertices (`frames` is then the samples per pixel, one per frame); the
   // hybrid's reflection/refraction loop starts at the G-buffer surface and traces up to
@@ -117,7 +123,7 @@ struct RayCount {
   bool exact = false;
 };
 RayCount launchedRays(const std::string& pass, uint32_t width, uint32_t height, uint32_t shadowLayers,
-                      uint32_t lightsPerHit, uint32_t maxDepth);
+                      uint32_t lightsPerHit, uint32_t maxDepth, IndirectRate indirectRate = IndirectRate::Full);
 
 // Names accepted by RenderSettings::aovs, in the order `--aov all` writes them.
 const std::vector<std::string>& aovNames();

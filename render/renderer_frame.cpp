@@ -152,7 +152,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
     traceRawPrimary(graph, in, *rawPipelines);
     traceRawShadows(graph, in, gb, shadowLights(), *rawPipelines);
-    o.rawTwins = traceRawTwins(graph, in, gb, manyLights, *rawPipelines);
+    o.rawTwins = traceRawTwins(graph, in, gb, manyLights, indirectQuarter(s), *rawPipelines);
   }
   // Many-light mode traces no shadow layers: lighting reads none, so only AO's needs denoising.
   o.shadow = o.shadowRaw;
@@ -177,7 +177,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
                              temporal)
                  .denoised;
   // When an effect is off its raw image is constant and goes to lighting as is.
-  o.indirectRaw = traceIndirect(graph, in, gb);
+  o.indirectRaw = traceIndirect(graph, in, gb, surface.current, indirectQuarter(s));
   o.indirect = o.indirectRaw;
   if (indirectOn(s))
     o.indirect = denoiseRadiance(graph, dn, "indirect", surface, motion, o.indirectRaw,

@@ -114,6 +114,10 @@ struct Renderer::Impl {
 
   // --- renderer.cpp: settings, cameras, constants, histories
   bool indirectOn(const RenderSettings& s) const { return s.indirect.value_or(scene.indirectByDefault); }
+  // rt-indirect traces one pixel per 2×2 block (gpu::kEffectIndirectQuarter).
+  bool indirectQuarter(const RenderSettings& s) const {
+    return s.mode != Mode::Raster && indirectOn(s) && s.indirectRate == IndirectRate::Quarter;
+  }
   float aoRadius(const RenderSettings& s) const;
   int32_t findInstance(const std::string& name) const;
   uint32_t shadowLights() const { return manyLights ? 0u : std::min(gpu.lightCount, gpu::kMaxShadowLights); }

@@ -132,7 +132,8 @@ RenderOutput Renderer::Impl::endRun() {
   summarisePasses(r.passOrder, r.passTimes, out, [&](const std::string& name) {
     const std::string twin = name.rfind("raw-", 0) == 0 ? name.substr(4) : name;  // a twin counts as its pass
     if ((twin == "rt-ao" && !s.ao) || (twin == "rt-indirect" && !indirectOn(s))) return RayCount{};  // returns at once
-    return launchedRays(name, s.width, s.height, shadowLights(), lightsPerHit, bounces);
+    return launchedRays(name, s.width, s.height, shadowLights(), lightsPerHit, bounces,
+                        indirectQuarter(s) ? IndirectRate::Quarter : IndirectRate::Full);
   });
   run.reset();
   return out;

@@ -20,6 +20,8 @@
 // Output (RGBA16F): rgb = E = π·L, one sample of the irradiance, demodulated (no albedo): lighting
 // applies albedo/π·E. Rays see shadow casters only, so a light's visible shape (which the lighting
 // pass already counts as direct light) is not counted again. Background and indirect off write 0.
+// At quarter rate (--indirect-rate quarter) one pixel per 2×2 block, rotating over 4 frames;
+// indirect_fill.comp gives the other three a depth- and normal-weighted mean of traced ones.
 layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = 2) uniform sampler2D depthTex;
 layout(set = 0, binding = 3) uniform sampler2D normalTex;
@@ -54,7 +56,7 @@ vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, inout
 #include "lib/indirect_ray.glsl"
 
 void main() {
-  ivec2 px = ivec2(gl_LaunchIDEXT.xy);
+  ivec2 px = indirectPixel(gl_LaunchIDEXT.xy);  // at quarter rate, its 2×2 block's pixel of this frame
   vec3 origin, dir;
   vec4 value;
   uint rng;

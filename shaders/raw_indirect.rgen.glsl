@@ -13,7 +13,9 @@
 // the normal facing the bounce ray's origin (−dir); the shadow ray (lib/light_ray.glsl, same
 // offset) then goes from the same point to the same kind of light sample, so its length and
 // coherence match, though not its exact direction. Rays are traced opaque with trivial misses.
-// Output: 0 where no bounce ray is traced, 0.5 where it misses, 1 where it hits.
+// Output: 0 where no bounce ray is traced, 0.5 where it misses, 1 where it hits. At quarter rate
+// the same block pixels trace (lib/indirect_ray.glsl) and the block's other pixels get
+// kIndirectSkipped, so a test sees which pixel of each block traced.
 layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = 2) uniform sampler2D depthTex;
 layout(set = 0, binding = 3) uniform sampler2D normalTex;
@@ -24,8 +26,17 @@ layout(location = 1) rayPayloadEXT uint visible;
 
 #include "lib/indirect_ray.glsl"
 
+const float kIndirectSkipped = 0.25;  // a pixel of a quarter-rate block that another pixel traces for
+
 void main() {
-  ivec2 px = ivec2(gl_LaunchIDEXT.xy);
+  ivec2 px = indirectPixel(gl_LaunchIDEXT.xy);
+  if (indirectQuarterRate()) {
+    ivec2 size = ivec2(frame.size);
+    for (int k = 0; k < 4; ++k) {
+      ivec2 q = 2 * ivec2(gl_LaunchIDEXT.xy) + ivec2(k & 1, k >> 1);
+      if (q != px && all(lessThan(q, size))) imageStore(outHit, q, vec4(kIndirectSkipped));
+    }
+  }
   vec3 origin, dir;
   vec4 value;
   uint rng;

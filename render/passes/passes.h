@@ -67,8 +67,9 @@ void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBu
 struct RawTwinImages {
   graph::ImageHandle ao, direct, indirect, specular;
 };
+// `indirectQuarter`: as traceIndirect's `quarter` (raw-rt-indirect launches the same grid).
 RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, bool manyLights,
-                            const RawRayPipelines& raw);
+                            bool indirectQuarter, const RawRayPipelines& raw);
 // Denoised by denoiseShadows() (render/passes/denoise.h).
 
 // Reflections and refractions of mirror, metal and glass pixels (RGBA16F radiance, 0 elsewhere).
@@ -82,8 +83,11 @@ graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& i
 graph::ImageHandle traceAo(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                            graph::ImageHandle into = {});
 // One-bounce indirect diffuse irradiance E (RGBA16F, demodulated), 1 sample per pixel; 0 when
-// FrameConstants::effectFlags lacks kEffectIndirect.
-graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
+// FrameConstants::effectFlags lacks kEffectIndirect. `quarter` (FrameConstants::effectFlags has
+// kEffectIndirect | kEffectIndirectQuarter): one traced pixel per 2×2 block ((w+1)/2 × (h+1)/2
+// launch), the rest filled by "rt-indirect-fill" guided by `surface` (the denoisers' surface image).
+graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
+                                 graph::ImageHandle surface, bool quarter);
 
 // Many lights: direct light from one importance-picked light per pixel, with its shadow ray
 // (RGBA16F radiance).

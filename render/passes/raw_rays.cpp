@@ -3,7 +3,8 @@
 // ray rate it reaches (its rays are the same; only shading and memory traffic differ). Exact
 // replays: primary, shadow, AO and many-light direct rays, the indirect bounce ray and the specular
 // path's first ray. Approximate: the shadow rays at those bounce hits (the twins know only the hit
-// distance, not the hit's normal) and, for specular, no deeper bounces (raw_specular.rgen).
+// distance, not the hit's normal) and, for specular, no deeper bounces (raw_specular.rgen). At
+// quarter-rate indirect, raw-rt-indirect launches rt-indirect's quarter-size grid.
 #include <utility>
 #include <vector>
 
@@ -21,7 +22,7 @@ constexpr VkImageUsageFlags kScratchUsage = VK_IMAGE_USAGE_STORAGE_BIT;
 // one R16F image (readable as an AOV, for the tests that compare it with its pass) at `outBinding`.
 graph::ImageHandle traceTwin(graph::RenderGraph& graph, const FrameInputs& in, const char* pass, const char* image,
                              std::vector<std::pair<uint32_t, graph::ImageHandle>> reads, uint32_t outBinding,
-                             const rhi::RayTracingPipeline& pipe) {
+                             const rhi::RayTracingPipeline& pipe, bool quarterLaunch = false) {
   graph::ImageHandle out = graph.createImage(
       image, {kVisibilityFormat, in.size.width, in.size.height, 1, kScratchUsage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
   graph.addPass(
@@ -31,14 +32,15 @@ graph::ImageHandle traceTwin(graph::RenderGraph& graph, const FrameInputs& in, c
         b.write(out, graph::Use::StorageWriteRayTracing);
         b.sideEffect();
       },
-      [reads, out, outBinding, &in, &pipe](graph::PassContext& pc) {
+      [reads, out, outBinding, quarterLaunch, &in, &pipe](graph::PassContext& pc) {
         vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.handle());
         rhi::DescriptorWriter w;
         w.uniformBuffer(0, in.constants).accelerationStructure(1, in.scene.tlas.handle());
         for (const auto& r : reads) w.sampledImage(r.first, pc.image(r.second).view(), in.nearest.handle());
         w.storageImage(outBinding, pc.image(out).view()).push(pc.cmd, pipe);
         bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.layout());
-        pipe.trace(pc.cmd, in.size.width, in.size.height);
+        const uint32_t shift = quarterLaunch ? 1u : 0u;  // one invocation per 2×2 block
+        pipe.trace(pc.cmd, (in.size.width + shift) >> shift, (in.size.height + shift) >> shift);
       });
   return out;
 }
@@ -95,12 +97,13 @@ void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBu
 }
 
 RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, bool manyLights,
-                            const RawRayPipelines& raw) {
+                            bool indirectQuarter, const RawRayPipelines& raw) {
   RawTwinImages t;
   t.ao = traceTwin(graph, in, "raw-rt-ao", "raw-ao", {{2, gb.depth}, {3, gb.normals}}, 4, raw.ao);
   if (manyLights)
     t.direct = traceTwin(graph, in, "raw-rt-direct", "raw-direct", {{2, gb.depth}, {3, gb.normals}}, 4, raw.direct);
-  t.indirect = traceTwin(graph, in, "raw-rt-indirect", "raw-indirect", {{2, gb.depth}, {3, gb.normals}}, 4, raw.indirect);
+  t.indirect = traceTwin(graph, in, "raw-rt-indirect", "raw-indirect", {{2, gb.depth}, {3, gb.normals}}, 4, raw.indirect,
+                          indirectQuarter);
   t.specular = traceTwin(graph, in, "raw-rt-specular", "raw-specular",
                          {{2, gb.depth}, {3, gb.normals}, {4, gb.albedo}, {5, gb.material}, {7, gb.emissive}}, 6,
                          raw.specular);

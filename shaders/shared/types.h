@@ -58,6 +58,9 @@ RAYSTER_CONST uint kTonemapNeutral = 1u;
 RAYSTER_CONST uint kEffectAo = 1u;        // ray-traced ambient occlusion scales ambient/environment light
 RAYSTER_CONST uint kEffectIndirect = 2u;
 RAYSTER_CONST uint kEffectPrefilteredEnv = 4u;  // untraced glossy light from the GGX-prefiltered environment
+// With kEffectIndirect: rt-indirect traces one pixel of each 2×2 block per frame (a quarter-size
+// launch, lib/indirect_ray.glsl) and rt-indirect-fill fills the others (--indirect-rate quarter).
+RAYSTER_CONST uint kEffectIndirectQuarter = 8u;
 // Levels of the prefiltered environment (render/gpu_environment.cpp): level k (1..N) is GGX
 // roughness k/N, each kPrefilteredWidth × kPrefilteredWidth/2, stacked vertically in one image.
 RAYSTER_CONST uint kPrefilteredLevels = 6u;

@@ -96,10 +96,12 @@ TEST(RawTwins, SpecularTwinTracesWhereTheSpecularPassDoes) {
 
 TEST(RawTwins, IndirectTwinBounceRaysHitInsideTheBoxAndMissUnderTheSky) {
   // raw-indirect: 0 no bounce ray, 0.5 missed, 1 hit. Its bounce rays are rt-indirect's exactly; on
-  // whitted's open floor most of them see the sky, in the Cornell box most hit a wall.
+  // whitted's open floor most of them see the sky, in the Cornell box most hit a wall. At full rate:
+  // every pixel traces (the quarter rate's block pattern: test_indirect_rate.cpp).
   auto dir = testDir();
   auto fraction = [&](const std::string& scene) {
-    auto img = renderTwins(dir, scene, "--primary raster --indirect on", {"indirect-raw", "raw-indirect"});
+    auto img = renderTwins(dir, scene, "--primary raster --indirect on --indirect-rate full",
+                           {"indirect-raw", "raw-indirect"});
     size_t hits = 0, traced = 0;
     for (int y = 0; y < kH; ++y)
       for (int x = 0; x < kW; ++x) {
