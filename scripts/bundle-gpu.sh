@@ -15,7 +15,8 @@ cp build-release/rayster "$out/"
 runtime='^(libc|libm|libdl|libpthread|librt|libstdc\+\+|libgcc_s|ld-linux-x86-64|linux-vdso)\.'
 libs=$(ldd build-release/rayster | awk '/=> \// {print $1}' | grep -vE "$runtime")
 for lib in $libs libvulkan.so.1 libGLdispatch.so.0 libGLX.so.0 libEGL.so.1 libOpenGL.so.0 libGL.so.1; do
-  path=$(ldconfig -p | awk -v l="$lib" '$1 == l && /x86-64/ {print $NF; exit}')
+  # No early `exit` in awk: ldconfig would die of SIGPIPE and pipefail would end the script silently.
+  path=$(ldconfig -p | awk -v l="$lib" '$1 == l && /x86-64/ && !found {print $NF; found = 1}')
   [ -n "$path" ] || { echo "bundle-gpu: $lib not found (run scripts/setup.sh)" >&2; exit 1; }
   cp -L "$path" "$out/lib/$lib"
 done
