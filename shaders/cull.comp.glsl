@@ -43,8 +43,9 @@ bool outsideFrustum(mat4 clipFromObject, vec3 lo, vec3 hi) {
 // with this frame's jittered clipFromWorld, the matrix the box is projected with here, so no jitter
 // margin is needed; and it is a subset of the frame's final depth, so a box behind it stays hidden:
 // no popping. The box's screen rectangle (grown by a pixel for rounding) is looked up at the finest
-// level where it spans at most 2 × 2 texels, all four read; the box is hidden when its nearest depth
-// (reversed Z: the largest) lies behind the farthest depth there.
+// level where it spans at most 4 × 4 texels, all of them read (at 2 × 2 the texels reach up to twice
+// as far past the rectangle, and a box beside a small window in an occluder stays visible); the box
+// is hidden when its nearest depth (reversed Z: the largest) lies behind the farthest depth there.
 bool occluded(mat4 clipFromObject, vec3 lo, vec3 hi) {
   Hiz hiz = Hiz(pc.hiz);
   vec2 ndcMin = vec2(1e30), ndcMax = vec2(-1e30);
@@ -64,12 +65,13 @@ bool occluded(mat4 clipFromObject, vec3 lo, vec3 hi) {
   ivec2 p1 = clamp(ivec2(floor((ndcMax * 0.5 + 0.5) * vec2(frame.size))) + 1, ivec2(0), last);
   uint levels = hizLevels(frame.size);
   uint level = 0u;
-  while (level + 1u < levels && any(greaterThan((p1 >> level) - (p0 >> level), ivec2(1)))) ++level;
+  while (level + 1u < levels && any(greaterThan((p1 >> level) - (p0 >> level), ivec2(int(kHizFootprint) - 1)))) ++level;
   uvec2 size = hizLevelSize(frame.size, level);
   uint offset = hizLevelOffset(frame.size, level);
   uvec2 t0 = uvec2(p0 >> level), t1 = uvec2(p1 >> level);
-  float farthest = min(min(hiz.d[offset + t0.y * size.x + t0.x], hiz.d[offset + t0.y * size.x + t1.x]),
-                       min(hiz.d[offset + t1.y * size.x + t0.x], hiz.d[offset + t1.y * size.x + t1.x]));
+  float farthest = 1.0;
+  for (uint y = t0.y; y <= t1.y; ++y)
+    for (uint x = t0.x; x <= t1.x; ++x) farthest = min(farthest, hiz.d[offset + y * size.x + x]);
   return nearest < farthest;
 }
 

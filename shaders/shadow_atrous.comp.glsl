@@ -34,8 +34,8 @@ void main() {
     float depthScales[5];
     atrousDepthScales(sp, int(pc.step), depthScales);
     [[unroll]] for (int l = 0; l < int(kMaxShadowDenoiseLayers); ++l) sum[l] = weights[l] = 0.0;
-    for (int j = -2; j <= 2; ++j)
-      for (int i = -2; i <= 2; ++i) {
+    [[unroll]] for (int j = -2; j <= 2; ++j)
+      [[unroll]] for (int i = -2; i <= 2; ++i) {
         ivec2 q = p + int(pc.step) * ivec2(i, j);
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(pc.size)))) continue;
         Surface sq = decodeSurface(texelFetch(surfaceTex, q, 0).xy);

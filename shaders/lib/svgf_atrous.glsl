@@ -1,5 +1,6 @@
 // Body of svgf_atrous.comp and svgf_atrous_history.comp (the latter defines
 // SVGF_WRITE_HISTORY): two pipelines, so the plain iterations bind no history image at all.
+#extension GL_EXT_control_flow_attributes : require
 #include "lib/common.glsl"
 #include "lib/denoise.glsl"
 
@@ -24,8 +25,8 @@ bool inside(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan
 // 3×3 Gaussian (1/4, 1/2, 1/4) of the variance around p.
 float blurredVariance(ivec2 p) {
   float sum = 0.0, weights = 0.0;
-  for (int j = -1; j <= 1; ++j)
-    for (int i = -1; i <= 1; ++i) {
+  [[unroll]] for (int j = -1; j <= 1; ++j)
+    [[unroll]] for (int i = -1; i <= 1; ++i) {
       ivec2 q = p + ivec2(i, j);
       if (!inside(q)) continue;
       float w = (i == 0 ? 0.5 : 0.25) * (j == 0 ? 0.5 : 0.25);
@@ -48,8 +49,8 @@ void main() {
     atrousDepthScales(sp, int(pc.step), depthScales);
     vec3 color = vec3(0.0);
     float variance = 0.0, weights = 0.0;
-    for (int j = -2; j <= 2; ++j)
-      for (int i = -2; i <= 2; ++i) {
+    [[unroll]] for (int j = -2; j <= 2; ++j)
+      [[unroll]] for (int i = -2; i <= 2; ++i) {
         ivec2 q = p + int(pc.step) * ivec2(i, j);
         if (!inside(q)) continue;
         vec4 c = texelFetch(inputTex, q, 0);

@@ -257,6 +257,9 @@ struct CullPush {
 // each ceil(previous / 2) and row-major, holding the MIN depth of the texels it covers (reversed Z:
 // the farthest). Kept in a buffer, so no per-level image views are needed.
 RAYSTER_CONST uint kHizGroupSize = 8u;
+// The occlusion test reads the pyramid level where a box's screen rectangle spans at most this many
+// texels per axis (shaders/cull.comp.glsl).
+RAYSTER_CONST uint kHizFootprint = 4u;
 
 // hiz.comp push constants: one dispatch per level.
 struct HizPush {

@@ -150,7 +150,7 @@ Cull cpuCull(const render::GpuScene::Draw& d, const glm::mat4& clipFromObject, c
                   (c.z < 0.0f ? 16u : 0u) | (c.z > c.w ? 32u : 0u);
   }
   if (allOutside != 0) return Cull::Outside;
-  // Occlusion: the box's screen rectangle, a pixel wider, at the level where it spans ≤ 2 × 2.
+  // Occlusion: the box's screen rectangle, a pixel wider, at the level where it spans ≤ 4 × 4.
   glm::vec2 lo(1e30f), hi(-1e30f);
   float nearest = 0.0f;
   for (int k = 0; k < 8; ++k) {
@@ -165,11 +165,13 @@ Cull cpuCull(const render::GpuScene::Draw& d, const glm::mat4& clipFromObject, c
   const glm::ivec2 p0 = glm::clamp(glm::ivec2(glm::floor((lo * 0.5f + 0.5f) * glm::vec2(size))) - 1, glm::ivec2(0), last);
   const glm::ivec2 p1 = glm::clamp(glm::ivec2(glm::floor((hi * 0.5f + 0.5f) * glm::vec2(size))) + 1, glm::ivec2(0), last);
   size_t level = 0;
-  while (level + 1 < hiz.levels.size() && ((p1.x >> level) - (p0.x >> level) > 1 || (p1.y >> level) - (p0.y >> level) > 1))
+  const int span = int(gpu::kHizFootprint) - 1;
+  while (level + 1 < hiz.levels.size() && ((p1.x >> level) - (p0.x >> level) > span || (p1.y >> level) - (p0.y >> level) > span))
     ++level;
   const glm::ivec2 t0(p0.x >> level, p0.y >> level), t1(p1.x >> level, p1.y >> level);
-  const float farthest = std::min(std::min(hiz.at(level, t0), hiz.at(level, {t1.x, t0.y})),
-                                  std::min(hiz.at(level, {t0.x, t1.y}), hiz.at(level, t1)));
+  float farthest = 1.0f;
+  for (int y = t0.y; y <= t1.y; ++y)
+    for (int x = t0.x; x <= t1.x; ++x) farthest = std::min(farthest, hiz.at(level, {x, y}));
   return nearest < farthest ? Cull::Occluded : Cull::Visible;
 }
 
