@@ -5,7 +5,9 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -53,6 +55,23 @@ inline Image8 renderOk(const std::filesystem::path& dir, const std::string& name
   auto empty = rejectEmpty(*img, w, h);
   EXPECT_FALSE(empty.has_value()) << name << ": " << empty.value_or("");
   return std::move(img).value();
+}
+
+// `rayster render ARGS -o dir/out.exr --aov LIST`; each AOV's EXR by name (a missing one fails).
+inline std::map<std::string, ImageF> renderAovs(const std::filesystem::path& dir, const std::string& args,
+                                                const std::vector<std::string>& aovs) {
+  std::string list;
+  for (const std::string& a : aovs) list += (list.empty() ? "" : ",") + a;
+  auto out = dir / "out.exr";
+  RunResult r = runRayster("render " + args + " --aov " + list + " -o " + out.string());
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  std::map<std::string, ImageF> images;
+  for (const std::string& a : aovs) {
+    auto img = readExr(dir / ("out." + a + ".exr"));
+    EXPECT_TRUE(img.ok()) << a << "\n" << r.output;
+    if (img.ok()) images[a] = std::move(*img);
+  }
+  return images;
 }
 
 } // namespace rayster::test

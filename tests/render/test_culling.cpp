@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/render/culling_scenes.h"
 #include "tests/render/run_rayster.h"
 
 namespace rayster::test {
@@ -56,36 +57,6 @@ std::filesystem::path writeTopDownScene(const std::filesystem::path& dir) {
   return file;
 }
 
-// The same grid behind a wall with a small window (as bench/scenes/culling-wall.json): from the
-// second frame on only what was visible is drawn early, and the pyramid of that depth hides
-// everything but what the window shows.
-std::filesystem::path writeWallScene(const std::filesystem::path& dir) {
-  std::ofstream(dir / "wall.obj") << R"(v -12 0 6.5
-v -0.4 0 6.5
-v -0.4 6 6.5
-v -12 6 6.5
-v 0.4 0 6.5
-v 12 0 6.5
-v 12 6 6.5
-v 0.4 6 6.5
-v -0.4 0 6.5
-v 0.4 0 6.5
-v 0.4 0.35 6.5
-v -0.4 0.35 6.5
-v -0.4 1.25 6.5
-v 0.4 1.25 6.5
-v 0.4 6 6.5
-v -0.4 6 6.5
-f 1 2 3 4
-f 5 6 7 8
-f 9 10 11 12
-f 13 14 15 16
-)";
-  auto file = dir / "wall.json";
-  std::ofstream(file) << R"({"models": [{"path": "builtin:instances:64"}, {"path": "wall.obj"}],
-  "cameras": [{"name": "window", "position": [0, 0.8, 9], "target": [0, 0.8, 0], "yfov": 40, "znear": 0.05, "zfar": 60}]})";
-  return file;
-}
 
 TEST(Culling, OnAndOffRenderTheSameImage) {
   auto dir = testDir();

@@ -72,25 +72,19 @@ Quad floorQuad(float x0, float x1, float z0, float z1, std::string m) {
   return {{x0, 0, z1}, {x1, 0, z1}, {x1, 0, z0}, {x0, 0, z0}, std::move(m)};
 }
 
-// Renders `scene` with `args` and the given AOVs; returns the AOVs' EXR images by name.
+// Renders `scene` at kS × kS with `args` and the comma-separated AOVs; the AOVs' EXR images by name,
+// and the image itself as "hdr".
 std::map<std::string, ImageF> renderAovs(const std::filesystem::path& dir, const std::string& scene,
                                          const std::string& args, const std::string& aovs) {
-  auto out = dir / "out.exr";
-  RunResult r = runRayster("render " + scene + " --primary raster --size " + std::to_string(kS) + "x" +
-                           std::to_string(kS) + " " + args + " --aov " + aovs + " -o " + out.string());
-  EXPECT_EQ(r.exitCode, 0) << r.output;
-  std::map<std::string, ImageF> images;
-  auto hdr = readExr(out);
-  if (hdr.ok()) images["hdr"] = std::move(*hdr);
-  size_t start = 0;
-  while (start < aovs.size()) {
-    size_t comma = aovs.find(',', start);
-    std::string name = aovs.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    auto img = readExr(dir / ("out." + name + ".exr"));
-    EXPECT_TRUE(img.ok()) << name;
-    if (img.ok()) images[name] = std::move(*img);
+  std::vector<std::string> names;
+  for (size_t start = 0; start < aovs.size();) {
+    const size_t comma = aovs.find(',', start);
+    names.push_back(aovs.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
     start = comma == std::string::npos ? aovs.size() : comma + 1;
   }
+  std::map<std::string, ImageF> images = test::renderAovs(
+      dir, scene + " --primary raster --size " + std::to_string(kS) + "x" + std::to_string(kS) + " " + args, names);
+  if (auto hdr = readExr(dir / "out.exr"); hdr.ok()) images["hdr"] = std::move(*hdr);  // the image itself
   return images;
 }
 

@@ -24,19 +24,10 @@ constexpr float kSkipped = 0.25f;  // raw_indirect.rgen's mark of a pixel anothe
 // `frames` frames of `scene` at w × h with --raw-rays and indirect light on; the AOVs by name.
 std::map<std::string, ImageF> render(const std::filesystem::path& dir, const std::string& scene, int w, int h,
                                      const std::string& args, const std::vector<std::string>& aovs) {
-  std::string list;
-  for (const std::string& a : aovs) list += (list.empty() ? "" : ",") + a;
-  auto out = dir / "out.exr";
-  RunResult r = runRayster("render " + scene + " --primary raster --indirect on --size " + std::to_string(w) + "x" +
-                           std::to_string(h) + " " + args + " --aov " + list + " -o " + out.string());
-  EXPECT_EQ(r.exitCode, 0) << r.output;
-  std::map<std::string, ImageF> images;
-  for (const std::string& a : aovs) {
-    auto img = readExr(dir / ("out." + a + ".exr"));
-    EXPECT_TRUE(img.ok()) << a << "\n" << r.output;
-    if (img.ok()) images[a] = std::move(*img);
-  }
-  return images;
+  return renderAovs(dir,
+                    scene + " --primary raster --indirect on --size " + std::to_string(w) + "x" + std::to_string(h) +
+                        " " + args,
+                    aovs);
 }
 
 float at(const ImageF& img, int x, int y, int c = 0) { return img.pixel(x, y)[c]; }

@@ -21,19 +21,8 @@ constexpr int kW = 64, kH = 48;
 // One frame (frame index 0) of `scene` with raw twins on; the AOVs by name.
 std::map<std::string, ImageF> renderTwins(const std::filesystem::path& dir, const std::string& scene,
                                           const std::string& args, const std::vector<std::string>& aovs) {
-  std::string list;
-  for (const std::string& a : aovs) list += (list.empty() ? "" : ",") + a;
-  auto out = dir / "out.exr";
-  RunResult r = runRayster("render " + scene + " --size " + std::to_string(kW) + "x" + std::to_string(kH) +
-                           " --frames 1 --raw-rays " + args + " --aov " + list + " -o " + out.string());
-  EXPECT_EQ(r.exitCode, 0) << r.output;
-  std::map<std::string, ImageF> images;
-  for (const std::string& a : aovs) {
-    auto img = readExr(dir / ("out." + a + ".exr"));
-    EXPECT_TRUE(img.ok()) << a << "\n" << r.output;
-    if (img.ok()) images[a] = std::move(*img);
-  }
-  return images;
+  return renderAovs(dir, scene + " --size " + std::to_string(kW) + "x" + std::to_string(kH) + " --frames 1 --raw-rays " + args,
+                    aovs);
 }
 
 float at(const ImageF& img, int x, int y, int c = 0) { return img.pixel(x, y)[c]; }
