@@ -48,9 +48,13 @@ rhi::ImageDesc shadowHistoryDesc(VkExtent2D size, uint32_t lights);
 rhi::ImageDesc svgfColorHistoryDesc(VkExtent2D size);
 rhi::ImageDesc svgfMomentsHistoryDesc(VkExtent2D size);
 
+// Layer counts up to this use the small shadow à-trous pipeline (shaders/shadow_atrous_2.comp.glsl).
+inline constexpr uint32_t kShadowAtrousSmallLayers = 2;
+
 struct DenoisePipelines {
   rhi::Pipeline surface;
   rhi::Pipeline shadowTemporal, shadowAtrous;
+  rhi::Pipeline shadowAtrous2;  // the same for at most kShadowAtrousSmallLayers layers (fewer registers)
   rhi::Pipeline svgfTemporal, svgfAtrous, svgfAtrousHistory;
   static DenoisePipelines create(rhi::Context& ctx);
 };

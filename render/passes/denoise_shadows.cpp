@@ -61,7 +61,8 @@ graph::ImageHandle shadowAtrous(graph::RenderGraph& graph, const DenoiseInputs& 
         b.write(out, graph::Use::StorageWriteCompute);
       },
       [=](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = in.pipelines.shadowAtrous;
+        const rhi::Pipeline& pipe =
+            lights <= kShadowAtrousSmallLayers ? in.pipelines.shadowAtrous2 : in.pipelines.shadowAtrous;
         vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
         rhi::DescriptorWriter()
             .sampledImage(0, pc.image(surface).view(), in.nearest)

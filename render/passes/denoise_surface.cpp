@@ -33,6 +33,7 @@ DenoisePipelines DenoisePipelines::create(rhi::Context& ctx) {
   p.shadowTemporal = rhi::createComputePipeline(ctx, "shadow_temporal.comp", shadowTemporal, sizeof(gpu::TemporalPush));
   const rhi::Binding shadowAtrous[] = {{0, kSampled}, {1, kSampled}, {2, kStorage}, {3, kSampled}};
   p.shadowAtrous = rhi::createComputePipeline(ctx, "shadow_atrous.comp", shadowAtrous, sizeof(gpu::AtrousPush));
+  p.shadowAtrous2 = rhi::createComputePipeline(ctx, "shadow_atrous_2.comp", shadowAtrous, sizeof(gpu::AtrousPush));
   const rhi::Binding svgfTemporal[] = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled},
                                        {5, kSampled}, {6, kStorage}, {7, kStorage}, {8, kStorage}};
   p.svgfTemporal = rhi::createComputePipeline(ctx, "svgf_temporal.comp", svgfTemporal, sizeof(gpu::TemporalPush));
