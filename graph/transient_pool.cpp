@@ -68,7 +68,6 @@ TransientPool& TransientPool::operator=(TransientPool&& o) noexcept {
   heaps_ = std::move(o.heaps_);
   images_ = std::move(o.images_);
   imported_ = std::move(o.imported_);
-  report_ = std::move(o.report_);
   rebuilds_ = o.rebuilds_;
   o.heaps_.clear();
   o.images_.clear();
@@ -76,7 +75,6 @@ TransientPool& TransientPool::operator=(TransientPool&& o) noexcept {
   o.items_.clear();
   o.plan_ = {};
   o.imported_.clear();
-  o.report_ = {};
   return *this;
 }
 
@@ -130,8 +128,7 @@ std::vector<const rhi::Image*> TransientPool::acquire(rhi::Context& ctx, const s
   items_ = std::move(items);
   requests_ = requests;
   before = aliasedBefore(plan_, items_);
-  updateReport();
-  if (!reuse && log::level() <= log::Level::Debug) log::debug("transient images placed\n{}", formatMemoryReport(report_));
+  if (!reuse && log::level() <= log::Level::Debug) log::debug("transient images placed\n{}", formatMemoryReport(report()));
   std::vector<const rhi::Image*> out;
   for (const rhi::Image& img : images_) out.push_back(&img);
   return out;
@@ -150,22 +147,22 @@ void TransientPool::recordImported(const std::vector<std::pair<std::string, cons
     e.imported = true;
     imported_.push_back(std::move(e));
   }
-  updateReport();
 }
 
-void TransientPool::updateReport() {
-  report_ = {};
+FrameMemoryReport TransientPool::report() const {
+  FrameMemoryReport report;
   for (size_t i = 0; i < requests_.size(); ++i) {
     const TransientRequest& r = requests_[i];
-    report_.entries.push_back({r.name, r.desc, items_[i].size, false, int32_t(plan_.placements[i].heap),
+    report.entries.push_back({r.name, r.desc, items_[i].size, false, int32_t(plan_.placements[i].heap),
                                plan_.placements[i].offset, r.firstPass, r.lastPass});
-    report_.transientUnaliasedBytes += items_[i].size;
+    report.transientUnaliasedBytes += items_[i].size;
   }
-  report_.transientBytes = plan_.totalBytes();
+  report.transientBytes = plan_.totalBytes();
   for (const FrameMemoryEntry& e : imported_) {
-    report_.entries.push_back(e);
-    report_.importedBytes += e.bytes;
+    report.entries.push_back(e);
+    report.importedBytes += e.bytes;
   }
+  return report;
 }
 
 } // namespace rayster::graph

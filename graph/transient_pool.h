@@ -65,13 +65,13 @@ class TransientPool {
                                          std::vector<std::vector<uint32_t>>& before);
   // The frame's imported images, for the report (duplicates, by image, count once).
   void recordImported(const std::vector<std::pair<std::string, const rhi::Image*>>& imported);
-  const FrameMemoryReport& report() const { return report_; }
+  // Built on demand from the last frame's placement: nothing of it is assembled per frame.
+  FrameMemoryReport report() const;
   size_t size() const { return images_.size(); }
   size_t rebuilds() const { return rebuilds_; }  // times the images were (re)created
 
  private:
   void release();
-  void updateReport();
   bool aliasing_ = true;
   rhi::Context* ctx_ = nullptr;
   std::vector<TransientRequest> requests_;
@@ -80,7 +80,6 @@ class TransientPool {
   std::vector<rhi::Allocation> heaps_;
   std::vector<rhi::Image> images_;
   std::vector<FrameMemoryEntry> imported_;
-  FrameMemoryReport report_;
   size_t rebuilds_ = 0;
 };
 
