@@ -19,6 +19,9 @@ void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, GpuSc
   for (const scene::Instance& inst : scene.instances) {
     if (!inst.castsShadows) continue;  // a light's visible shape: the light itself is sampled
     const scene::Mesh& mesh = scene.meshes[inst.mesh];
+    // Corners in front-side order: a mirroring transform turns the world winding, and the sampler
+    // takes the front from cross(p1 − p0, p2 − p0) (single-sided emitters light only their front).
+    const bool mirrored = glm::determinant(glm::mat3(inst.worldFromObject)) < 0.0f;
     for (const scene::Primitive& prim : mesh.primitives) {
       if (prim.material >= scene.materials.size()) continue;
       const glm::vec3 e = scene.materials[prim.material].emissive;
@@ -28,7 +31,7 @@ void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, GpuSc
         glm::vec3* p[3] = {&t.p0, &t.p1, &t.p2};
         glm::vec2* uv[3] = {&t.uv0, &t.uv1, &t.uv2};
         for (int k = 0; k < 3; ++k) {
-          const uint32_t v = prim.indices[i + k];
+          const uint32_t v = prim.indices[i + (mirrored && k > 0 ? 3 - k : k)];
           *p[k] = glm::vec3(inst.worldFromObject * glm::vec4(prim.positions[v], 1.0f));
           *uv[k] = v < prim.uvs.size() ? prim.uvs[v] : glm::vec2(0.0f);
         }

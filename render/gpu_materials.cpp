@@ -57,7 +57,7 @@ void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs)
     r.emissive = m.emissive;
     r.metallic = m.metallic;
     r.roughness = m.roughness;
-    r.flags = (m.doubleSided ? gpu::kMaterialDoubleSided : 0u) |
+    r.flags = (m.doubleSided ? gpu::kMaterialDoubleSided : 0u) | (m.cullsBackFaces() ? gpu::kMaterialCullsBackFaces : 0u) |
               (m.alphaMode == scene::AlphaMode::Mask ? gpu::kMaterialAlphaMask : 0u) |
               (m.alphaMode == scene::AlphaMode::Blend ? gpu::kMaterialAlphaBlend : 0u);
     r.alphaCutoff = m.alphaCutoff;
@@ -75,7 +75,6 @@ void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs)
     r.normalTexture = slotFor(m.normalTexture, false);
     r.occlusionTexture = slotFor(m.occlusionTexture, false);
     r.emissiveTexture = slotFor(m.emissiveTexture, true);
-    if (m.alphaMode != scene::AlphaMode::Opaque) gs.anyAlphaTested = true;
     rows.push_back(r);
   }
   if (rows.empty()) {

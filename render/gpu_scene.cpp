@@ -52,9 +52,26 @@ bool alphaTested(const scene::Scene& scene, uint32_t material) {
   return material < scene.materials.size() && scene.materials[material].alphaMode != scene::AlphaMode::Opaque;
 }
 
+bool cullsBackFaces(const scene::Scene& scene, uint32_t material) {
+  return material < scene.materials.size() && scene.materials[material].cullsBackFaces();
+}
+
+// How a mesh's triangles meet back faces. Facing culling is per TLAS instance, so a mesh whose
+// triangles all cull (the glTF default) or none cull is culled (or not) by the hardware; a mesh that
+// mixes them keeps culling off and its culling triangles run any-hit (alpha.rahit), which ignores
+// their back faces.
+enum class Sidedness { AllCull, NoneCull, Mixed };
+Sidedness sidedness(const scene::Scene& scene, const scene::Mesh& mesh) {
+  size_t culling = 0;
+  for (const scene::Primitive& p : mesh.primitives) culling += cullsBackFaces(scene, p.material) ? 1 : 0;
+  return mesh.primitives.empty() || culling == 0 ? Sidedness::NoneCull
+         : culling == mesh.primitives.size()     ? Sidedness::AllCull
+                                                 : Sidedness::Mixed;
+}
+
 // Triangles: vertices (with tangents) and indices; the BLAS reads positions at offset 0.
-void addTriangles(rhi::Context& ctx, const scene::Scene& scene, const scene::Primitive& src, GpuScene& gs,
-                  std::vector<gpu::GeometryRecord>& rows, std::vector<rhi::BlasGeometry>& blas) {
+void addTriangles(rhi::Context& ctx, const scene::Scene& scene, const scene::Primitive& src, bool mixedSides,
+                  GpuScene& gs, std::vector<gpu::GeometryRecord>& rows, std::vector<rhi::BlasGeometry>& blas) {
   scene::Primitive prim = src;
   if (prim.tangents.size() != prim.positions.size()) scene::generateTangents(prim);
   std::vector<gpu::Vertex> vertices(prim.positions.size());
@@ -72,7 +89,8 @@ void addTriangles(rhi::Context& ctx, const scene::Scene& scene, const scene::Pri
   rows.push_back({vb.address(), ib.address(), prim.material, uint32_t(vertices.size()),
                   uint32_t(prim.indices.size()), gpu::kGeometryTriangles});
   blas.push_back({0, 0, vb.address(), sizeof(gpu::Vertex), uint32_t(vertices.size()), ib.address(),
-                  uint32_t(prim.indices.size()), !alphaTested(scene, prim.material)});
+                  uint32_t(prim.indices.size()),
+                  !alphaTested(scene, prim.material) && !(mixedSides && cullsBackFaces(scene, prim.material))});
 }
 
 // Spheres: one AABB each for the BLAS, and SphereRecords for the intersection shader.
@@ -108,7 +126,9 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   std::vector<std::vector<rhi::BlasGeometry>> blasInputs;
   std::vector<uint64_t> meshTriangles;
   std::vector<std::vector<std::pair<glm::vec3, glm::vec3>>> meshBounds;  // per primitive, then the sphere set
+  std::vector<Sidedness> meshSides;
   for (const scene::Mesh& mesh : scene.meshes) {
+    meshSides.push_back(sidedness(scene, mesh));
     auto& bounds = meshBounds.emplace_back();
     for (const scene::Primitive& prim : mesh.primitives) {
       glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
@@ -123,7 +143,7 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     auto& inputs = blasInputs.emplace_back();
     uint64_t triangles = 0;
     for (const scene::Primitive& prim : mesh.primitives) {
-      addTriangles(ctx, scene, prim, gs, geometryRows, inputs);
+      addTriangles(ctx, scene, prim, meshSides.back() == Sidedness::Mixed, gs, geometryRows, inputs);
       triangles += prim.indices.size() / 3;
     }
     if (!mesh.spheres.empty()) addSpheres(ctx, scene, mesh.spheres, gs, geometryRows, inputs);
@@ -147,10 +167,11 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
                             meshFirstGeometry[inst.mesh], mask, 0, 0, inst.worldFromObject});
     for (uint32_t p = 0; p < mesh.primitives.size(); ++p)
       gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + p, uint32_t(mesh.primitives[p].indices.size()), false,
-                          inst.castsShadows, meshBounds[inst.mesh][p].first, meshBounds[inst.mesh][p].second});
+                          inst.castsShadows, cullsBackFaces(scene, mesh.primitives[p].material),
+                          meshBounds[inst.mesh][p].first, meshBounds[inst.mesh][p].second});
     if (!mesh.spheres.empty())
       gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + uint32_t(mesh.primitives.size()),
-                          uint32_t(mesh.spheres.size()), true, inst.castsShadows, meshBounds[inst.mesh].back().first,
+                          uint32_t(mesh.spheres.size()), true, inst.castsShadows, false, meshBounds[inst.mesh].back().first,
                           meshBounds[inst.mesh].back().second});
     gs.triangleCount += meshTriangles[inst.mesh];
     gs.sphereCount += mesh.spheres.size();
@@ -162,7 +183,9 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     ti.instanceCustomIndex = row;
     ti.mask = mask;
     ti.instanceShaderBindingTableRecordOffset = mesh.spheres.empty() ? gpu::kHitGroupTriangles : gpu::kHitGroupSpheres;
-    ti.flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR;
+    // Facing is decided in object space, where glTF's counter-clockwise fronts hold whatever the
+    // instance's determinant: a mirrored node needs no flip (glTF 2.0 §3.7.4).
+    ti.flags = meshSides[inst.mesh] == Sidedness::AllCull ? 0u : VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR;
     ti.accelerationStructureReference = inst.mesh;  // patched with the BLAS address below
     tlasInstances.push_back(ti);
   }
@@ -191,6 +214,8 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   gs.drawRecords = tableBuffer(ctx, drawRows, "draw-records");
   gs.cull = createCullBuffers(ctx, uint32_t(gs.draws.size()));
   uploadEmissiveTriangles(ctx, scene, gs);
+  for (const auto& inputs : blasInputs)
+    for (const rhi::BlasGeometry& g : inputs) gs.anyHit = gs.anyHit || !g.opaque;
   gs.bounds = scene.bounds();
   gs.uploadMs = msSince(t0);
 

@@ -39,6 +39,7 @@ struct GpuScene {
     uint32_t count;  // triangles: index count; spheres: sphere count (one box each)
     bool spheres;
     bool castsShadows = true;  // false for a light's visible shape (no shadow-map draw)
+    bool cullsBackFaces = false;  // scene::Material::cullsBackFaces(): rays (and shadow maps) skip back faces
     glm::vec3 aabbMin{0.0f}, aabbMax{0.0f};  // object space: what GPU culling tests
   };
   std::vector<rhi::Buffer> vertexBuffers;  // one per primitive (AABBs for sphere sets)
@@ -72,7 +73,7 @@ struct GpuScene {
   std::vector<int32_t> instanceRowOf;
   bool instancesDynamic = false;  // animated, or edited since upload: the instance table is rewritten per frame
   uint32_t lightCount = 0;
-  bool anyAlphaTested = false;  // MASK or BLEND somewhere: rays may not be forced opaque
+  bool anyHit = false;  // some geometry is not opaque (alpha tests, back-face rejection): rays may not be forced opaque
   uint64_t triangleCount = 0;   // over all instances
   // The scene's world bounds at upload (rest pose): scene::Scene::bounds() visits every vertex of
   // every instance, far too slow per frame with thousands of instances.

@@ -21,11 +21,21 @@ glm::vec2 jitterNdc(uint32_t frame, uint32_t width, uint32_t height) {
   return {px.x * 2.0f / float(width), px.y * 2.0f / float(height)};
 }
 
-glm::mat4 jitteredClipFromWorld(const glm::mat4& clipFromWorld, glm::vec2 ndcOffset) {
-  glm::mat4 t(1.0f);
+namespace {
+template <class Mat, class Vec>
+Mat jittered(const Mat& clipFromWorld, Vec ndcOffset) {
+  Mat t(1);
   t[3][0] = ndcOffset.x;  // clip.x += jx·w, so ndc.x += jx
   t[3][1] = ndcOffset.y;
   return t * clipFromWorld;
+}
+} // namespace
+
+glm::mat4 jitteredClipFromWorld(const glm::mat4& clipFromWorld, glm::vec2 ndcOffset) {
+  return jittered(clipFromWorld, ndcOffset);
+}
+glm::dmat4 jitteredClipFromWorld(const glm::dmat4& clipFromWorld, glm::dvec2 ndcOffset) {
+  return jittered(clipFromWorld, ndcOffset);
 }
 
 } // namespace rayster::render

@@ -26,5 +26,6 @@ glm::vec2 jitterNdc(uint32_t frame, uint32_t width, uint32_t height);
 // clipFromWorld with the NDC offset applied: a translation in NDC after the projection
 // (equivalent to adding it to the projection's third column with the sign of w = −z_view).
 glm::mat4 jitteredClipFromWorld(const glm::mat4& clipFromWorld, glm::vec2 ndcOffset);
+glm::dmat4 jitteredClipFromWorld(const glm::dmat4& clipFromWorld, glm::dvec2 ndcOffset);
 
 } // namespace rayster::render

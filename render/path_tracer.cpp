@@ -45,7 +45,7 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
                                mean_.next(graph, "pt-mean", f), moments_.next(graph, "pt-moments", f)};
     const graph::ImageHandle mean = tracePaths(graph, in, pipeline_, acc);
     if (f + 1 == s.frames) {
-      const graph::ImageHandle ldr = tonemap(graph, in, mean, {std::exp2(s.exposureEv), s.tonemap, s.seed});
+      const graph::ImageHandle ldr = tonemap(graph, in, mean, {s.tonemap, s.seed});
       readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));
       readback(graph, mean, graph.importBuffer("pt-readback", &meanReadback, &meanState));
       if (variance)
@@ -72,6 +72,7 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
   std::memcpy(out.ldr.rgba.data(), ldrReadback.mapped(), pixels * 4);
   out.hdr = ImageF::make(int(s.width), int(s.height));
   std::memcpy(out.hdr.rgba.data(), meanReadback.mapped(), pixels * 16);
+  const float exposure = std::exp2(s.exposureEv);  // the sources were pre-exposed (lib/frame.glsl)
   if (variance) {
     // Variance of the mean: (E[x²] − E[x]²) · n/(n − 1) / n per channel; 0 with one sample.
     ImageF v = ImageF::make(int(s.width), int(s.height));
@@ -80,12 +81,13 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
     for (size_t i = 0; i < pixels; ++i) {
       for (int c = 0; c < 3; ++c) {
         const float m = out.hdr.rgba[i * 4 + c];
-        v.rgba[i * 4 + c] = n > 1.0f ? std::max(0.0f, sq[i * 4 + c] - m * m) / (n - 1.0f) : 0.0f;
+        v.rgba[i * 4 + c] = n > 1.0f ? std::max(0.0f, sq[i * 4 + c] - m * m) / (n - 1.0f) / (exposure * exposure) : 0.0f;
       }
       v.rgba[i * 4 + 3] = 1.0f;
     }
     out.aovs.emplace_back("variance", std::move(v));
   }
+  unexpose(out.hdr, exposure);
   summarisePasses(passOrder, passTimes, out);
   return out;
 }

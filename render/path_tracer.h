@@ -60,4 +60,8 @@ class PathTracer {
 void summarisePasses(const std::vector<std::string>& order, const std::map<std::string, std::vector<double>>& times,
                      RenderOutput& out, const std::function<RayCount(const std::string&)>& rays = {});
 
+// Divides an image of pre-exposed light (lib/frame.glsl) by the exposure, back to the scene's units:
+// HDR outputs do not depend on --exposure.
+void unexpose(ImageF& image, float exposure);
+
 } // namespace rayster::render

@@ -51,7 +51,9 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   shadowMap.depthFormat = kDepthFormat;
   shadowMap.bindings = {{0, kUniform}};
   shadowMap.pushConstantBytes = 72;  // clipFromWorld, instance, geometry
+  shadowMap.dynamicCulling = true;   // per draw: the material's sidedness, the instance's mirroring
   p.shadowMap = rhi::createGraphicsPipeline(ctx, shadowMap);
+  shadowMap.dynamicCulling = false;
   shadowMap.vertex = "shadow_sphere.vert";
   shadowMap.fragment = "shadow_sphere.frag";
   shadowMap.pushConstantBytes = 88;  // clipFromWorld, instance, geometry, light position or direction
@@ -71,7 +73,7 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   const rhi::Binding taa[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kStorage}};
   p.taa = rhi::createComputePipeline(ctx, "taa.comp", taa, 16);
   const rhi::Binding tone[] = {{1, kSampled}, {2, kStorage}};
-  p.tonemap = rhi::createComputePipeline(ctx, "tonemap.comp", tone, 24);
+  p.tonemap = rhi::createComputePipeline(ctx, "tonemap.comp", tone, 20);
   const rhi::Binding fill[] = {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}};
   p.specularFill = rhi::createComputePipeline(ctx, "specular_fill.comp", fill, 0);
   const rhi::Binding indirectFill[] = {{0, kUniform}, {1, kStorage}, {2, kSampled}};

@@ -97,18 +97,25 @@ glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::C
                          const glm::mat4* prevClipFromWorld) {
   gpu::FrameConstants fc{};
   const float aspect = float(s.width) / float(s.height);
-  glm::mat4 view = glm::lookAt(cam.position, cam.target, cam.up);
+  // In double, then rounded once: with a near plane of 1 mm the projection's depth row is ~1e-3 of
+  // the others, and a float product and inverse lose enough digits to bend every position the
+  // G-buffer reconstructs from depth (self-shadowing streaks on traced primaries).
+  const glm::dmat4 view = glm::lookAt(glm::dvec3(cam.position), glm::dvec3(cam.target), glm::dvec3(cam.up));
   // Reversed Z (near → 1, far → 0): swapping the planes in a [0,1]-depth projection does it.
-  glm::mat4 proj = glm::perspective(cam.yFov, aspect, cam.zFar, cam.zNear);
-  proj[1][1] *= -1.0f;  // Vulkan clip space: y points down
-  fc.unjitteredClipFromWorld = proj * view;
+  glm::dmat4 proj = glm::perspective(double(cam.yFov), double(aspect), double(cam.zFar), double(cam.zNear));
+  proj[1][1] *= -1.0;  // Vulkan clip space: y points down
+  const glm::dmat4 clipFromWorld = proj * view;
+  fc.unjitteredClipFromWorld = glm::mat4(clipFromWorld);
   fc.prevClipFromWorld = prevClipFromWorld ? *prevClipFromWorld : fc.unjitteredClipFromWorld;
   fc.jitter = jitter;
   // Raster and traced primaries (and every position reconstructed from depth) follow the jitter.
-  fc.clipFromWorld = jitteredClipFromWorld(fc.unjitteredClipFromWorld, jitter);
-  fc.worldFromClip = glm::inverse(fc.clipFromWorld);
+  const glm::dmat4 jittered = jitteredClipFromWorld(clipFromWorld, glm::dvec2(jitter));
+  fc.clipFromWorld = glm::mat4(jittered);
+  fc.worldFromClip = glm::mat4(glm::inverse(jittered));
   fc.cameraPosition = glm::vec4(cam.position, 1.0f);
-  fc.ambient = glm::vec4(scene.ambient, 0.0f);
+  // Every source is pre-exposed (lib/frame.glsl: lights and emission in the shaders, the rest here).
+  const float exposure = std::exp2(s.exposureEv);
+  fc.ambient = glm::vec4(scene.ambient * exposure, 0.0f);
   fc.size = {s.width, s.height};
   fc.frameIndex = frameIndex;
   fc.seed = s.seed;
@@ -116,21 +123,21 @@ glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::C
   fc.shadowLightCount = shadowLights();
   fc.aoLayer = aoInShadowImage(s) ? shadowLights() : 0u;
   fc.manyLights = manyLights ? 1u : 0u;
-  fc.exposure = std::exp2(s.exposureEv);
+  fc.exposure = exposure;
   fc.geometries = gpu.geometries.address();
   fc.instances = gpu.instances.address();
   fc.materials = gpu.materials.address();
   fc.lights = gpu.lights.address();
   const scene::Environment& env = scene.environment;
   fc.environmentKind = gpu.environment.kind;
-  fc.environment = glm::vec4(glm::vec3(env.intensity), env.rotation);
+  fc.environment = glm::vec4(glm::vec3(env.intensity * exposure), env.rotation);
   fc.environmentSlot = gpu.environment.slot;
   fc.prefilteredSlot = gpu.environment.prefilteredSlot;
   fc.skyZenith = env.zenith;
   fc.skyHorizon = env.horizon;
   fc.skyGround = env.ground;
-  for (int k = 0; k < 9; ++k) fc.irradianceSh[k] = glm::vec4(gpu.environment.irradianceSh[k], 0.0f);
-  fc.sceneFlags = gpu.anyAlphaTested ? gpu::kSceneAlphaTested : 0u;
+  for (int k = 0; k < 9; ++k) fc.irradianceSh[k] = glm::vec4(gpu.environment.irradianceSh[k] * exposure, 0.0f);
+  fc.sceneFlags = gpu.anyHit ? gpu::kSceneAnyHit : 0u;
   fc.mirrorRoughness = s.mirrorRoughness;
   fc.glossyThreshold = s.glossyThreshold;
   fc.aoRadius = aoRadius(s);

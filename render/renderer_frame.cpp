@@ -79,7 +79,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
                      {hdr, gb.depth, taaHistory.previous(graph, "taa-history", f),
                       taaHistory.next(graph, "taa-history", f), gb.motion, taaFrames});
   images.hdr = hdr;
-  graph::ImageHandle ldr = tonemap(graph, in, hdr, {std::exp2(s.exposureEv), s.tonemap, s.seed});
+  graph::ImageHandle ldr = tonemap(graph, in, hdr, {s.tonemap, s.seed});
   if (control.present)
     copyToOutput(graph, ldr);
   else if (!control.readback)

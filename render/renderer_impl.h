@@ -99,6 +99,7 @@ struct Renderer::Impl {
       VkFormat format;
       uint32_t layer;
       rhi::Buffer buffer;
+      bool radiance = false;  // pre-exposed light (lib/frame.glsl): divided by the exposure on the host
     };
     std::vector<AovReadback> aovReadback;
     std::deque<graph::ResourceState> aovStates;  // stable addresses for the graph

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <set>
 
 #include "core/half.h"
 #include "core/log.h"
@@ -44,7 +45,16 @@ uint32_t texelBytes(VkFormat format) {
   }
 }
 
+// Stages that hold light (pre-exposed on the GPU; written out in the scene's own units).
+const std::set<std::string> kRadianceStages = {"emissive",      "reflection-raw", "reflection-denoised", "indirect-raw",
+                                               "indirect-denoised", "raw-direct", "raw-indirect", "raw-specular"};
+
 } // namespace
+
+void unexpose(ImageF& image, float exposure) {
+  for (size_t i = 0; i < image.rgba.size(); ++i)
+    if (i % 4 != 3) image.rgba[i] /= exposure;  // alpha is coverage (or, for emissive, the ior)
+}
 
 void summarisePasses(const std::vector<std::string>& order, const std::map<std::string, std::vector<double>>& times,
                      RenderOutput& out, const std::function<RayCount(const std::string&)>& rays) {
@@ -114,7 +124,8 @@ void Renderer::Impl::addReadbacks(graph::RenderGraph& graph, const GBuffer& gb, 
     r.aovReadback.push_back(Run::AovReadback{name, d.format, it->second.second,
                                              rhi::Buffer(ctx, size_t(d.width) * d.height * texelBytes(d.format) * d.layers,
                                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
-                                                         "aov-readback")});
+                                                         "aov-readback"),
+                                             kRadianceStages.count(name) > 0});
     r.aovStates.emplace_back();
   }
   for (size_t i = 0; i < r.aovReadback.size(); ++i)
@@ -152,11 +163,14 @@ void Renderer::Impl::readImages(RenderOutput& out) {
   out.hdr = ImageF::make(int(s.width), int(s.height));
   const uint16_t* halves = static_cast<const uint16_t*>(hdrReadback.mapped());
   for (size_t i = 0; i < pixels * 4; ++i) out.hdr.rgba[i] = halfToFloat(halves[i]);
-  for (auto& [name, format, layer, buffer] : aovReadback) {
+  const float exposure = std::exp2(s.exposureEv);
+  unexpose(out.hdr, exposure);
+  for (auto& [name, format, layer, buffer, radiance] : aovReadback) {
     ImageF img = ImageF::make(int(s.width), int(s.height));
     const uint8_t* data = static_cast<const uint8_t*>(buffer.mapped()) + size_t(layer) * pixels * texelBytes(format);
     for (size_t i = 0; i < pixels; ++i)
       for (int c = 0; c < 4; ++c) img.rgba[i * 4 + c] = texel(data, format, i, c);
+    if (radiance) unexpose(img, exposure);
     out.aovs.emplace_back(name, std::move(img));
   }
 }

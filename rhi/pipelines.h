@@ -61,6 +61,7 @@ struct GraphicsPipelineDesc {
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
   VkCompareOp depthCompare = VK_COMPARE_OP_GREATER;  // Rayster uses reversed Z
   VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
+  bool dynamicCulling = false;  // cull mode and front face set per draw (vkCmdSetCullMode, vkCmdSetFrontFace)
   std::vector<Binding> bindings;
   uint32_t pushConstantBytes = 0;
   VkDescriptorSetLayout globalSet = VK_NULL_HANDLE;

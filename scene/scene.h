@@ -50,6 +50,11 @@ struct Material {
   float attenuationDistance = FLT_MAX;
   float specular = 1.0f;                // KHR_materials_specular
   glm::vec3 specularColor{1.0f};
+
+  // glTF: a single-sided material's back faces are not rendered, and rays ignore them. Transmissive
+  // materials are the exception for rays: a refracted ray leaves a closed volume through its back
+  // faces, so culling them would trap it inside (the raster G-buffer still culls them).
+  bool cullsBackFaces() const { return !doubleSided && transmission <= 0.0f; }
 };
 
 // Decoded 8-bit RGBA pixels, as stored in a file (sRGB or linear is decided by the use).

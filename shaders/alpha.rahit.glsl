@@ -5,14 +5,16 @@
 #include "lib/textures.glsl"
 #include "lib/surface.glsl"
 
-// Alpha testing for MASK and BLEND triangles, shared by every ray type (it never touches the
-// payload). Opaque geometry is built OPAQUE and never runs this shader.
+// Alpha testing for MASK and BLEND triangles, and back-face rejection for the single-sided
+// triangles of meshes that mix sidedness (render/gpu_scene.cpp), shared by every ray type (it never
+// touches the payload). Opaque geometry is built OPAQUE and never runs this shader.
 hitAttributeEXT vec2 bary;
 
 void main() {
   InstanceRecord inst = Instances(frame.instances).i[gl_InstanceCustomIndexEXT];
   GeometryRecord g = Geometries(frame.geometries).g[inst.firstGeometry + gl_GeometryIndexEXT];
   MaterialRecord m = Materials(frame.materials).m[g.material];
+  if ((m.flags & kMaterialCullsBackFaces) != 0u && gl_HitKindEXT == gl_HitKindBackFacingTriangleEXT) ignoreIntersectionEXT;
   Indices idx = Indices(g.indexAddress);
   Vertices vtx = Vertices(g.vertexAddress);
   uint base = uint(gl_PrimitiveID) * 3u;

@@ -2,6 +2,7 @@
 #extension GL_EXT_ray_tracing : require
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
+#include "lib/ray_flags.glsl"
 
 // Ray-traced ambient occlusion from the G-buffer (TECHNIQUES.md §13): one cosine-weighted ray about
 // the shading normal per pixel per frame, from P offset along the geometric normal, as long as the
@@ -27,8 +28,7 @@ void main() {
     return;
   }
   visible = 0u;
-  uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT |
-               ((frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT);
+  uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | sceneRayFlags();
   // Casters only: a light's visible shape does not occlude the light around it.
   traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, frame.aoRadius, 0);
   imageStore(outAo, ivec3(px, int(frame.aoLayer)), vec4(float(visible)));

@@ -2,6 +2,7 @@
 #extension GL_EXT_ray_tracing : require
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
+#include "lib/ray_flags.glsl"
 #include "lib/lights.glsl"
 #include "lib/light_select.glsl"
 #include "lib/textures.glsl"
@@ -34,8 +35,7 @@ float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
   float tMax;
   if (!lightShadowRay(i, p, ng, directRayOffset(p), rng, origin, dir, tMax)) return 0.0;
   visible = 0u;
-  uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT |
-               ((frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT);
+  uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | sceneRayFlags();
   traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, tMax, 0);
   return float(visible);
 }

@@ -20,10 +20,14 @@ void main() {
   InstanceRecord inst = Instances(frame.instances).i[inDraw.x];
   GeometryRecord g = Geometries(frame.geometries).g[inDraw.y];
   MaterialRecord m = Materials(frame.materials).m[g.material];
+  // Single-sided materials show no back faces (glTF doubleSided false). gl_FrontFacing comes from
+  // the screen winding, which a mirroring instance turns.
+  bool mirrored = determinant(mat3(inst.worldFromObject)) < 0.0;
+  if ((m.flags & kMaterialDoubleSided) == 0u && gl_FrontFacing == mirrored) discard;
   if (alphaRejects(m, inUv0, inUv1, alphaNoise(uvec2(gl_FragCoord.xy)))) discard;
   // The geometric normal from the triangle itself, exactly as the traced producer computes it.
   vec3 p0, p1, p2;
   trianglePositions(g, inst, uint(gl_PrimitiveID), p0, p1, p2);
-  SurfacePoint sp = SurfacePoint(inWorldPos, inNormal, inTangent, cross(p1 - p0, p2 - p0), inUv0, inUv1);
+  SurfacePoint sp = SurfacePoint(inWorldPos, inNormal, inTangent, windingNormal(inst, p0, p1, p2), inUv0, inUv1);
   writeGBuffer(evaluateSurface(m, sp, frame.cameraPosition.xyz), inDraw.x, motionFromWorld(inWorldPos, inPrevWorldPos));
 }

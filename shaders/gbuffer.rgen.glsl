@@ -2,6 +2,7 @@
 #extension GL_EXT_ray_tracing : require
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
+#include "lib/ray_flags.glsl"
 #include "lib/textures.glsl"
 #include "lib/surface.glsl"
 #include "lib/sphere.glsl"
@@ -26,10 +27,10 @@ void main() {
   ivec2 px = ivec2(gl_LaunchIDEXT.xy);
   vec2 uv = (vec2(px) + 0.5) / vec2(gl_LaunchSizeEXT.xy);
   vec3 origin = frame.cameraPosition.xyz;
-  vec3 dir = normalize(worldFromDepth(frame.worldFromClip, uv, 1.0) - origin);
+  vec3 dir = cameraRayDirection(frame.worldFromClip, uv, origin);
 
   payload.t = -1.0;
-  uint flags = (frame.sceneFlags & kSceneAlphaTested) != 0u ? gl_RayFlagsNoneEXT : gl_RayFlagsOpaqueEXT;
+  uint flags = sceneRayFlags();
   traceRayEXT(tlas, flags, kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
 
   if (payload.t < 0.0) {

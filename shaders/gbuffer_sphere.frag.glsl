@@ -20,7 +20,7 @@ void main() {
   // The same ray as a traced primary: from the camera through this pixel's centre.
   vec2 uv = gl_FragCoord.xy / vec2(frame.size);
   vec3 origin = frame.cameraPosition.xyz;
-  vec3 dir = normalize(worldFromDepth(frame.worldFromClip, uv, 1.0) - origin);
+  vec3 dir = cameraRayDirection(frame.worldFromClip, uv, origin);
   mat4 objectFromWorld = inverse(inst.worldFromObject);
   vec3 objOrigin = (objectFromWorld * vec4(origin, 1.0)).xyz;
   vec3 objDir = (objectFromWorld * vec4(dir, 0.0)).xyz;

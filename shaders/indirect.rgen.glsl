@@ -2,6 +2,7 @@
 #extension GL_EXT_ray_tracing : require
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
+#include "lib/ray_flags.glsl"
 #include "lib/textures.glsl"
 #include "lib/surface.glsl"
 #include "lib/sphere.glsl"
@@ -30,7 +31,6 @@ layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D outIndirect;
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
 layout(location = 1) rayPayloadEXT uint visible;
 
-uint baseRayFlags() { return (frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT; }
 
 // Direct light at a hit from one light chosen in proportion to its importance (lib/light_select.glsl:
 // exact over few lights, resampled candidates over many), divided by the probability of the pick.
@@ -38,7 +38,7 @@ vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, inout
   float invPdf;
   uint chosen = selectLight(p, n, rng, invPdf);
   if (chosen >= frame.lightCount) return vec3(0.0);
-  LightRecord light = Lights(frame.lights).l[chosen];
+  LightRecord light = loadLight(chosen);
   vec3 l;
   float dist;
   vec3 incident = lightIncident(light, p, l, dist);
@@ -46,7 +46,7 @@ vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, inout
   float tMax;
   if (!lightShadowRay(chosen, p, ng, hitRayOffset(p), rng, origin, dir, tMax)) return vec3(0.0);
   visible = 0u;
-  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | baseRayFlags(),
+  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | sceneRayFlags(),
               kMaskCastsShadow, 0, 0, 1, origin, 0.0, dir, tMax, 1);
   if (visible == 0u) return vec3(0.0);
   float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
@@ -65,7 +65,7 @@ void main() {
     return;
   }
   payload.t = -1.0;
-  traceRayEXT(tlas, baseRayFlags(), kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+  traceRayEXT(tlas, sceneRayFlags(), kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
   vec3 radiance;
   if (payload.t < 0.0) {
     radiance = environmentRadiance(dir);

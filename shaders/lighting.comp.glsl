@@ -43,7 +43,7 @@ void main() {
   float depth = texelFetch(depthTex, px, 0).r;
   vec2 uv = (vec2(px) + 0.5) / vec2(frame.size);
   if (isBackground(depth)) {
-    vec3 viewDir = worldFromDepth(frame.worldFromClip, uv, 1.0) - frame.cameraPosition.xyz;
+    vec3 viewDir = cameraRayDirection(frame.worldFromClip, uv, frame.cameraPosition.xyz);
     imageStore(outColor, px, vec4(environmentRadiance(viewDir), 1.0));
     return;
   }

@@ -2,6 +2,7 @@
 #extension GL_EXT_ray_tracing : require
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
+#include "lib/ray_flags.glsl"
 #include "lib/textures.glsl"
 #include "lib/surface.glsl"
 #include "lib/sphere.glsl"
@@ -36,13 +37,12 @@ const uint kPathTraceStream = 0x9A7E0u;
 const uint kRouletteDepth = 3u;  // vertices before roulette: short paths keep their full weight
 const uint kAllLights = 16u;     // up to this many analytic lights, each gets a shadow ray per vertex
 
-uint baseRayFlags() { return (frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT; }
 float offsetFor(vec3 p) { return max(max(abs(p.x), max(abs(p.y), abs(p.z))), 1.0) * 1e-4; }
 
 bool unoccluded(vec3 p, vec3 ng, vec3 dir, float dist) {
   float eps = offsetFor(p);
   visible = 0u;
-  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | baseRayFlags(),
+  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | sceneRayFlags(),
               kMaskCastsShadow, 0, 0, 1, p + (dot(dir, ng) > 0.0 ? ng : -ng) * eps, 0.0, dir, max(dist - eps, 0.0), 1);
   return visible != 0u;
 }
@@ -73,7 +73,7 @@ vec3 lightBsdf(PathVertex x, vec3 l) {
 }
 
 vec3 analyticLight(PathVertex x, uint i, float pick, inout uint rng) {
-  LightRecord light = Lights(frame.lights).l[i];
+  LightRecord light = loadLight(i);
   vec3 centreDir;
   float centreDist, dist;
   lightCentre(light, x.p, centreDir, centreDist);
@@ -101,7 +101,7 @@ vec3 nextEvent(PathVertex x, inout uint rng) {
   }
   if (frame.emissiveTriangleCount > 0u) {
     vec3 q, nq, le;
-    sampleEmissive(vec3(rnd(rng), rnd(rng), rnd(rng)), q, nq, le);
+    sampleEmissive(vec3(rnd(rng), rnd(rng), rnd(rng)), x.p, q, nq, le);
     vec3 d = q - x.p;
     float dist = length(d);
     vec3 l = d / max(dist, 1e-12);
@@ -128,7 +128,7 @@ vec3 escaped(vec3 dir, float pdf) {
   vec3 le = environmentRadiance(dir);
   if (pdf > 0.0 && frame.environmentCdfWidth > 0u) le *= misWeight(pdf, environmentPdf(dir));
   for (uint i = 0u; i < frame.lightCount; ++i) {
-    LightRecord l = Lights(frame.lights).l[i];
+    LightRecord l = loadLight(i);
     if (l.type != kLightDirectional || l.angularRadius <= 0.0) continue;
     float oneMinusCos = lightConeOneMinusCos(l, 0.0);
     if (dot(dir, -normalize(l.direction)) < 1.0 - oneMinusCos) continue;
@@ -143,11 +143,11 @@ vec3 tracePath(vec3 origin, vec3 dir, inout uint rng) {
   float pdf = 0.0;  // density of the last BSDF sample; 0: the camera ray or a glass event (no MIS)
   for (uint depth = 0u;; ++depth) {
     payload.t = -1.0;
-    traceRayEXT(tlas, baseRayFlags(), kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+    traceRayEXT(tlas, sceneRayFlags(), kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
     float tLight;
     uint li = hitSphereLight(origin, dir, payload.t < 0.0 ? 1e30 : payload.t, tLight);
     if (li < frame.lightCount) {
-      LightRecord l = Lights(frame.lights).l[li];
+      LightRecord l = loadLight(li);
       float oneMinusCos = lightConeOneMinusCos(l, distance(origin, l.position));
       float w = pdf > 0.0 ? misWeight(pdf, lightPickProbability() / (2.0 * kPi * oneMinusCos)) : 1.0;
       return radiance + beta * lightSurfaceRadiance(l, dir, oneMinusCos) * w;
@@ -218,7 +218,7 @@ void main() {
   // A uniformly jittered position in the pixel: the mean is the box-filtered image.
   vec2 uv = (vec2(px) + vec2(rnd(rng), rnd(rng))) / vec2(gl_LaunchSizeEXT.xy);
   vec3 origin = frame.cameraPosition.xyz;
-  vec3 dir = normalize(worldFromDepth(frame.worldFromClip, uv, 1.0) - origin);  // reversed Z: near is 1
+  vec3 dir = cameraRayDirection(frame.worldFromClip, uv, origin);
   vec3 c = tracePath(origin, dir, rng);
   if (any(isnan(c)) || any(isinf(c))) c = vec3(0.0);  // a degenerate sample must not poison the mean
 

@@ -21,7 +21,7 @@ void main() {
   float value;
   if (aoRay(px, origin, dir, value)) {
     visible = 0u;
-    traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT,
+    traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT | gl_RayFlagsCullBackFacingTrianglesEXT,
                 kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, frame.aoRadius, 0);
     value = float(visible);
   }

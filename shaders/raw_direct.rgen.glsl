@@ -32,9 +32,9 @@ void main() {
     uint i = selectLight(p, n, rng, invPdf);
     vec3 l, origin, dir;
     float dist, tMax;
-    if (i < frame.lightCount && !all(equal(lightIncident(Lights(frame.lights).l[i], p, l, dist), vec3(0.0))) &&
+    if (i < frame.lightCount && !all(equal(lightIncident(loadLight(i), p, l, dist), vec3(0.0))) &&
         lightShadowRay(i, p, ng, max(hitRayOffset(p), 4.0 * depthError), rng, origin, dir, tMax))
-      traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT,
+      traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT | gl_RayFlagsCullBackFacingTrianglesEXT,
                   kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, tMax, 0);
   }
   imageStore(outVisibility, px, vec4(float(visible)));

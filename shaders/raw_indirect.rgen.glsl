@@ -43,7 +43,7 @@ void main() {
   float result = 0.0;
   if (indirectRay(px, origin, dir, value, rng)) {
     hitT = floatBitsToUint(-1.0);
-    traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+    traceRayEXT(tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsCullBackFacingTrianglesEXT, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
     float t = uintBitsToFloat(hitT);
     result = t < 0.0 ? 0.5 : 1.0;
     if (t >= 0.0) {
@@ -54,7 +54,7 @@ void main() {
       float tMax;
       if (i < frame.lightCount && lightShadowRay(i, p, -dir, hitRayOffset(p), rng, shadowOrigin, shadowDir, tMax)) {
         visible = 0u;
-        traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT,
+        traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT | gl_RayFlagsCullBackFacingTrianglesEXT,
                     kMaskCastsShadow, 0, 0, 1, shadowOrigin, 0.0, shadowDir, tMax, 1);
       }
     }

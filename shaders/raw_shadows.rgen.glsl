@@ -23,7 +23,7 @@ void main() {
   float tMax;
   visible = 0u;
   if (shadowRay(px, layer, origin, dir, tMax))
-    traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT,
+    traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT | gl_RayFlagsCullBackFacingTrianglesEXT,
                 kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, tMax, 0);
   imageStore(outVisibility, ivec3(px, layer), vec4(float(visible)));
 }

@@ -42,7 +42,7 @@ void shadowRay(uint i, vec3 p, vec3 n, inout uint rng) {
   float tMax;
   if (!lightShadowRay(i, p, n, hitRayOffset(p), rng, origin, dir, tMax)) return;
   visible = 0u;
-  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT,
+  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT | gl_RayFlagsCullBackFacingTrianglesEXT,
               kMaskCastsShadow, 0, 0, 1, origin, 0.0, dir, tMax, 1);
 }
 
@@ -57,7 +57,7 @@ void main() {
     return;
   }
   hitT = floatBitsToUint(-1.0);
-  traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+  traceRayEXT(tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsCullBackFacingTrianglesEXT, kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
   float t = uintBitsToFloat(hitT);
   if (t >= 0.0) {
     vec3 p = origin + t * dir;
@@ -69,7 +69,7 @@ void main() {
       for (uint i = 0u; i < frame.lightCount; ++i) {
         vec3 l;
         float dist;
-        if (!all(equal(lightIncident(Lights(frame.lights).l[i], p, l, dist), vec3(0.0)))) shadowRay(i, p, -dir, rng);
+        if (!all(equal(lightIncident(loadLight(i), p, l, dist), vec3(0.0)))) shadowRay(i, p, -dir, rng);
       }
     }
   }

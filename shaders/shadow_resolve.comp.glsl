@@ -93,7 +93,7 @@ uint cubeFace(vec3 d) {
 
 float lightVisibility(uint i, vec3 p, vec3 ng, float angle) {
   ShadowLight sl = shadow.lights[i];
-  LightRecord light = Lights(frame.lights).l[i];
+  LightRecord light = loadLight(i);
   if (sl.kind == kShadowNone) return 1.0;
   if (sl.kind == kShadowCascaded) {
     vec3 l = -normalize(light.direction);

@@ -2,6 +2,7 @@
 #extension GL_EXT_ray_tracing : require
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
+#include "lib/ray_flags.glsl"
 #include "lib/lights.glsl"
 
 // RT shadows from the G-buffer (TECHNIQUES.md §8): one ray per pixel per light per frame, towards
@@ -28,8 +29,7 @@ void main() {
   }
   visible = 0u;
   // Opaque (no any-hit) only when no geometry needs alpha testing (TECHNIQUES.md §4).
-  uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT |
-               ((frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT);
+  uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | sceneRayFlags();
   traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, tMax, 0);
   imageStore(outVisibility, ivec3(px, layer), vec4(float(visible)));
 }

@@ -2,6 +2,7 @@
 #extension GL_EXT_ray_tracing : require
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
+#include "lib/ray_flags.glsl"
 #include "lib/textures.glsl"
 #include "lib/surface.glsl"
 #include "lib/sphere.glsl"
@@ -35,14 +36,13 @@ layout(set = 0, binding = 7) uniform sampler2D emissiveTex;  // .a: the first su
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
 layout(location = 1) rayPayloadEXT uint visible;
 
-uint baseRayFlags() { return (frame.sceneFlags & kSceneAlphaTested) != 0u ? 0u : gl_RayFlagsOpaqueEXT; }
 
 float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
   vec3 origin, dir;
   float tMax;
   if (!lightShadowRay(i, p, ng, hitRayOffset(p), rng, origin, dir, tMax)) return 0.0;
   visible = 0u;
-  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | baseRayFlags(),
+  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | sceneRayFlags(),
               kMaskCastsShadow, 0, 0, 1, origin, 0.0, dir, tMax, 1);
   return float(visible);
 }
@@ -65,7 +65,7 @@ void main() {
   vec3 radiance = vec3(0.0);
   for (uint bounce = 1u; bounce <= min(frame.maxSpecularBounces, kMaxSpecularBounces); ++bounce) {
     payload.t = -1.0;
-    traceRayEXT(tlas, baseRayFlags(), kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+    traceRayEXT(tlas, sceneRayFlags(), kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
     if (payload.t < 0.0) {
       radiance += beta * environmentRadiance(dir);
       break;

@@ -1,13 +1,13 @@
 #version 460
 #include "lib/common.glsl"
 
-// HDR → exposure → tonemap operator → exact sRGB → ±0.5 LSB dither → RGBA8 UNORM.
+// HDR (already exposed: the sources are pre-exposed, lib/frame.glsl) → tonemap operator → exact sRGB → ±0.5 LSB dither → RGBA8 UNORM.
 // The sRGB encoding happens here, once, and the target is UNORM (never an sRGB format too).
 // render/tonemap_curves.cpp mirrors the operators for the unit tests: keep both in step.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 1) uniform sampler2D hdrTex;
 layout(set = 0, binding = 2, rgba8) uniform writeonly image2D outLdr;
-layout(push_constant) uniform Push { uvec2 size; float exposure; uint seed; uint op; float dither; } pc;
+layout(push_constant) uniform Push { uvec2 size; uint seed; uint op; float dither; } pc;
 
 // Hill's fit of ACES RRT+ODT. Rows of the fit's matrices; mat3(rows) * v in HLSL equals
 // v * mat3(rows) in GLSL.
@@ -44,7 +44,7 @@ vec3 pbrNeutral(vec3 c) {
 void main() {
   uvec2 id = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(id, pc.size))) return;
-  vec3 hdr = max(texelFetch(hdrTex, ivec2(id), 0).rgb * pc.exposure, vec3(0.0));
+  vec3 hdr = max(texelFetch(hdrTex, ivec2(id), 0).rgb, vec3(0.0));
   vec3 ldr = linearToSrgb(pc.op == kTonemapNeutral ? pbrNeutral(hdr) : acesFitted(hdr));
   uint h = pcg(id.x + pcg(id.y + pcg(pc.seed)));
   float dither = (float(h >> 8) * (1.0 / 16777216.0) - 0.5) / 255.0;

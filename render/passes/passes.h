@@ -127,8 +127,8 @@ struct TaaInputs {
 };
 graph::ImageHandle resolveTaa(graph::RenderGraph& graph, const FrameInputs& in, const TaaInputs& taa);
 
+// The HDR input is already exposed (sources are pre-exposed, lib/frame.glsl): no exposure here.
 struct ToneSettings {
-  float exposure = 1.0f;  // linear multiplier, 2^EV
   Tonemapper op = Tonemapper::Aces;
   uint32_t seed = 0;      // of the ±0.5 LSB dither
   bool dither = true;     // off only where tests compare exact 8-bit values

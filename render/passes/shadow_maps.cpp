@@ -8,6 +8,21 @@
 
 namespace rayster::render {
 
+namespace {
+
+// A shadow ray from a receiver meets the faces of an occluder that face the receiver, which the light
+// sees from behind: a single-sided material's shadow-map draw keeps its back faces and culls its
+// front (the ray-traced shadows ignore back faces: lib/ray_flags.glsl). The light views have no
+// y flip, unlike the camera (renderer.cpp), so glTF's counter-clockwise fronts land clockwise on the
+// atlas; a mirroring instance turns them once more.
+void setShadowCulling(VkCommandBuffer cmd, const GpuScene::Draw& d, const gpu::InstanceRecord& instance) {
+  const bool mirrored = glm::determinant(glm::mat3(instance.worldFromObject)) < 0.0f;
+  vkCmdSetCullMode(cmd, d.cullsBackFaces ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_NONE);
+  vkCmdSetFrontFace(cmd, mirrored ? VK_FRONT_FACE_COUNTER_CLOCKWISE : VK_FRONT_FACE_CLOCKWISE);
+}
+
+} // namespace
+
 graph::ImageHandle renderShadowAtlas(graph::RenderGraph& graph, const FrameInputs& in, const ShadowAtlas& atlas) {
   const VkExtent2D size{atlas.columns * atlas.tileSize, atlas.rows * atlas.tileSize};
   graph::ImageHandle depth = graph.createImage(
@@ -46,6 +61,7 @@ graph::ImageHandle renderShadowAtlas(graph::RenderGraph& graph, const FrameInput
             const uint32_t bytes = spheres ? sizeof(push) : 72;
             for (const GpuScene::Draw& d : in.scene.draws) {
               if (d.spheres != spheres || !d.castsShadows) continue;  // lights' visible shapes cast nothing
+              if (!spheres) setShadowCulling(pc.cmd, d, in.scene.instanceRecords[d.instance]);
               push.instance = d.instance;
               push.geometry = d.geometry;
               vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, bytes, &push);

@@ -24,9 +24,8 @@ graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, gra
             .storageImage(2, pc.image(ldr).view())
             .push(pc.cmd, pipe);
         const float dither = tone.dither ? 1.0f : 0.0f;
-        uint32_t push[6] = {in.size.width, in.size.height, 0, tone.seed, uint32_t(tone.op), 0};
-        std::memcpy(&push[2], &tone.exposure, sizeof(float));
-        std::memcpy(&push[5], &dither, sizeof(float));
+        uint32_t push[5] = {in.size.width, in.size.height, tone.seed, uint32_t(tone.op), 0};
+        std::memcpy(&push[4], &dither, sizeof(float));
         vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), push);
         vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
       });

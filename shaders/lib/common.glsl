@@ -104,6 +104,15 @@ vec3 worldFromDepth(mat4 worldFromClip, vec2 uv, float depth) {
   return p.xyz / p.w;
 }
 
+// The camera ray through uv, aimed at the far plane (depth 0) in homogeneous coordinates. Never
+// through the near plane: with znear = 1 mm that point is 1 mm from a camera tens of metres from the
+// origin, so its float position's rounding (~ulp(|camera|)) tilts the ray by ~1e-3 rad, several
+// pixels, and traced hits no longer lie on the ray that depth reconstruction assumes.
+vec3 cameraRayDirection(mat4 worldFromClip, vec2 uv, vec3 origin) {
+  vec4 p = worldFromClip * vec4(uv * 2.0 - 1.0, 0.0, 1.0);
+  return normalize(p.xyz - origin * p.w);
+}
+
 // Ray origin for a G-buffer surface: along the geometric normal by more than both the float spacing
 // at P and the error of reconstructing P from a quantised depth (one depth ulp moves P by
 // ~z²·ulp/near along the view ray: far from the camera that exceeds a fixed epsilon and curved

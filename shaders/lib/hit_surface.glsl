@@ -3,7 +3,7 @@
 #ifndef RAYSTER_HIT_SURFACE_GLSL
 #define RAYSTER_HIT_SURFACE_GLSL
 
-// sp.geometricNormal keeps the triangle's winding (outward for closed meshes), unflipped.
+// sp.geometricNormal keeps the triangle's front side (outward for closed meshes), unflipped.
 void surfaceAtHit(PrimaryPayload payload, vec3 origin, vec3 dir, out SurfacePoint sp, out MaterialRecord m) {
   InstanceRecord inst = Instances(frame.instances).i[payload.instance];
   GeometryRecord g = Geometries(frame.geometries).g[payload.geometry];
@@ -35,7 +35,7 @@ void surfaceAtHit(PrimaryPayload payload, vec3 origin, vec3 dir, out SurfacePoin
     sp.normal = (inst.normalFromObject * vec4(v0.normal * w.x + v1.normal * w.y + v2.normal * w.z, 0.0)).xyz;
     vec4 t = v0.tangent * w.x + v1.tangent * w.y + v2.tangent * w.z;
     sp.tangent = vec4((inst.worldFromObject * vec4(t.xyz, 0.0)).xyz, v0.tangent.w);
-    sp.geometricNormal = cross(p1 - p0, p2 - p0);
+    sp.geometricNormal = windingNormal(inst, p0, p1, p2);
     sp.uv0 = v0.uv0 * w.x + v1.uv0 * w.y + v2.uv0 * w.z;
     sp.uv1 = v0.uv1 * w.x + v1.uv1 * w.y + v2.uv1 * w.z;
   }

@@ -12,7 +12,7 @@ float hitRayOffset(vec3 p) { return max(max(abs(p.x), max(abs(p.y), abs(p.z))), 
 // `eps`: the offset along ng; the ray ends eps short of the sampled point on the light.
 bool lightShadowRay(uint i, vec3 p, vec3 ng, float eps, inout uint rng, out vec3 origin, out vec3 dir,
                     out float tMax) {
-  LightRecord light = Lights(frame.lights).l[i];
+  LightRecord light = loadLight(i);
   float dist;
   dir = sampleLightDirection(light, p, vec2(rnd(rng), rnd(rng)), dist);
   origin = p + ng * eps;

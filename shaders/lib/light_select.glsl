@@ -35,7 +35,7 @@ uint selectLight(vec3 p, vec3 n, inout uint rng, out float invPdf) {
   float chosenW = 0.0;
   for (uint k = 0u; k < candidates; ++k) {
     uint i = enumerate ? k : min(uint(rnd(rng) * float(count)), count - 1u);
-    float w = lightImportance(Lights(frame.lights).l[i], p, n);
+    float w = lightImportance(loadLight(i), p, n);
     // Resampling weight p̂/q with q = 1/count for uniform candidates; the importance itself when
     // enumerating (then total = Σ w and the pick has probability w / total exactly).
     float r = enumerate ? w : w * float(count);

@@ -33,7 +33,7 @@ uint hitSphereLight(vec3 origin, vec3 dir, float tMax, out float tHit) {
   uint hit = frame.lightCount;
   tHit = tMax;
   for (uint i = 0u; i < frame.lightCount; ++i) {
-    LightRecord l = Lights(frame.lights).l[i];
+    LightRecord l = loadLight(i);
     if (l.type == kLightDirectional || l.radius <= 0.0) continue;
     vec3 o = origin - l.position;
     float b = dot(o, dir), c = dot(o, o) - l.radius * l.radius;
@@ -51,12 +51,12 @@ uint hitSphereLight(vec3 origin, vec3 dir, float tMax, out float tHit) {
 // Emission of an emissive triangle's material at uv (as evaluateSurface() computes it).
 vec3 triangleEmission(uint material, vec2 uv) {
   MaterialRecord m = Materials(frame.materials).m[material];
-  return m.emissive * SAMPLE_SLOT(m.emissiveTexture, uv, uv, vec4(1.0)).rgb;
+  return exposedEmission(m) * SAMPLE_SLOT(m.emissiveTexture, uv, uv, vec4(1.0)).rgb;
 }
 
 // A point uniformly on the emissive area: triangle by area (binary search of the CDF), then
-// uniform barycentrics. Density over area 1 / frame.emissiveArea.
-void sampleEmissive(vec3 u, out vec3 q, out vec3 nq, out vec3 emission) {
+// uniform barycentrics. Density over area 1 / frame.emissiveArea. `x`: the point it lights.
+void sampleEmissive(vec3 u, vec3 x, out vec3 q, out vec3 nq, out vec3 emission) {
   EmissiveTriangles tris = EmissiveTriangles(frame.emissiveTriangles);
   uint lo = 0u, hi = frame.emissiveTriangleCount - 1u;
   while (lo < hi) {
@@ -67,8 +67,11 @@ void sampleEmissive(vec3 u, out vec3 q, out vec3 nq, out vec3 emission) {
   float su = sqrt(u.y);
   vec3 w = vec3(1.0 - su, su * (1.0 - u.z), su * u.z);
   q = t.p0 * w.x + t.p1 * w.y + t.p2 * w.z;
-  nq = normalize(cross(t.p1 - t.p0, t.p2 - t.p0));
+  nq = normalize(cross(t.p1 - t.p0, t.p2 - t.p0));  // the front side (render/gpu_emissive.cpp)
   emission = triangleEmission(t.material, t.uv0 * w.x + t.uv1 * w.y + t.uv2 * w.z);
+  // A single-sided emitter has no back face for rays (lib/ray_flags.glsl): it lights only its front.
+  if ((Materials(frame.materials).m[t.material].flags & kMaterialCullsBackFaces) != 0u && dot(nq, x - q) <= 0.0)
+    emission = vec3(0.0);
 }
 
 // Index of the first entry of the inclusive CDF f[base .. base + n) greater than u.

@@ -47,7 +47,7 @@ ShadingTerms shadingTerms(ShadingInput s) {
 
 // Light `i`'s direct contribution at s, shadowed by lightVisibility().
 vec3 shadeLight(ShadingInput s, ShadingTerms t, uint i, inout uint rng) {
-  LightRecord light = Lights(frame.lights).l[i];
+  LightRecord light = loadLight(i);
   vec3 l;
   float dist;
   vec3 incident = lightIncident(light, s.p, l, dist);

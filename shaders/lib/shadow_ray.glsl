@@ -13,7 +13,7 @@ bool shadowRay(ivec2 px, uint layer, out vec3 origin, out vec3 dir, out float tM
   vec3 p = worldFromDepth(frame.worldFromClip, uv, depth);
   vec4 n = texelFetch(normalTex, px, 0);
   vec3 ng = octDecode(n.zw);
-  LightRecord light = Lights(frame.lights).l[layer];
+  LightRecord light = loadLight(layer);
 
   uint rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kShadowStream ^ pcg(layer));
   vec2 u = vec2(rnd(rng), rnd(rng));

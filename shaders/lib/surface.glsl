@@ -30,6 +30,13 @@ struct SurfacePoint {
   vec2 uv1;
 };
 
+// The triangle's normal from its world positions, outward for counter-clockwise fronts: a mirroring
+// instance (negative determinant) turns the world winding, so its cross product is flipped back.
+vec3 windingNormal(InstanceRecord inst, vec3 p0, vec3 p1, vec3 p2) {
+  vec3 n = cross(p1 - p0, p2 - p0);
+  return determinant(mat3(inst.worldFromObject)) < 0.0 ? -n : n;
+}
+
 // World-space positions of triangle `primitive` of a geometry, transformed by its instance.
 void trianglePositions(GeometryRecord g, InstanceRecord inst, uint primitive, out vec3 p0, out vec3 p1, out vec3 p2) {
   Indices idx = Indices(g.indexAddress);
@@ -82,7 +89,7 @@ GBufferValues evaluateSurface(MaterialRecord m, SurfacePoint sp, vec3 cameraPos)
     }
   }
   float ao = 1.0 + m.occlusionStrength * (SAMPLE_SLOT(m.occlusionTexture, sp.uv0, sp.uv1, vec4(1.0)).r - 1.0);
-  vec3 emissive = m.emissive * SAMPLE_SLOT(m.emissiveTexture, sp.uv0, sp.uv1, vec4(1.0)).rgb;
+  vec3 emissive = exposedEmission(m) * SAMPLE_SLOT(m.emissiveTexture, sp.uv0, sp.uv1, vec4(1.0)).rgb;
 
   GBufferValues o;
   o.normals = vec4(octEncode(ns), octEncode(ng));

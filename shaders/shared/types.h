@@ -39,6 +39,7 @@ RAYSTER_CONST uint kNoTexture = 0xFFFFFFFFu;
 RAYSTER_CONST uint kMaterialDoubleSided = 1u;
 RAYSTER_CONST uint kMaterialAlphaMask = 2u;   // alpha test against alphaCutoff (any-hit, discard)
 RAYSTER_CONST uint kMaterialAlphaBlend = 4u;  // stochastic (hashed) coverage, converges over frames
+RAYSTER_CONST uint kMaterialCullsBackFaces = 16u;  // scene::Material::cullsBackFaces(): rays ignore back faces
 
 // GeometryRecord::kind
 RAYSTER_CONST uint kGeometryTriangles = 0u;
@@ -49,7 +50,7 @@ RAYSTER_CONST uint kHitGroupTriangles = 0u;
 RAYSTER_CONST uint kHitGroupSpheres = 1u;
 
 // FrameConstants::sceneFlags
-RAYSTER_CONST uint kSceneAlphaTested = 1u;  // some geometry runs any-hit: rays may not be forced opaque
+RAYSTER_CONST uint kSceneAnyHit = 1u;  // some geometry runs any-hit (alpha tests, back-face rejection): rays may not be forced opaque
 
 // Tonemap operators (tonemap.comp push constant; render::Tonemapper mirrors them in C++)
 RAYSTER_CONST uint kTonemapAces = 0u;

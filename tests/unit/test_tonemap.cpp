@@ -94,7 +94,8 @@ class TonemapDevice : public ::testing::Test {
     ctx_.reset();
   }
 
-  // Tonemaps one RGBA16F image of the given linear colours (one pixel each) and reads back RGBA8.
+  // Tonemaps one RGBA16F image of the given linear colours (one pixel each) × exposure, as the frame
+  // stores them pre-exposed, and reads back RGBA8.
   std::vector<uint8_t> run(const std::vector<glm::vec3>& colours, Tonemapper op, float exposure) {
     auto scene = scene::makeBuiltinScene("cornell");
     EXPECT_TRUE(scene.ok());
@@ -108,7 +109,7 @@ class TonemapDevice : public ::testing::Test {
     rhi::Buffer staging(*ctx_, w * 8, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, rhi::MemoryUsage::Upload, "hdr-staging");
     auto* halves = static_cast<uint16_t*>(staging.mapped());
     for (uint32_t i = 0; i < w; ++i)
-      for (int c = 0; c < 4; ++c) halves[i * 4 + c] = floatToHalf(c < 3 ? colours[i][c] : 1.0f);
+      for (int c = 0; c < 4; ++c) halves[i * 4 + c] = floatToHalf(c < 3 ? colours[i][c] * exposure : 1.0f);
     rhi::Image hdrImage(*ctx_, {kHdrFormat, w, h, 1, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT},
                         "hdr-constant");
     rhi::Buffer readbackBuffer(*ctx_, w * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr");
@@ -131,7 +132,7 @@ class TonemapDevice : public ::testing::Test {
           vkCmdCopyBufferToImage(pc.cmd, pc.buffer(src).handle(), pc.image(hdr).handle(),
                                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
         });
-    graph::ImageHandle ldr = tonemap(graph, in, hdr, {exposure, op, 0, /*dither*/ false});
+    graph::ImageHandle ldr = tonemap(graph, in, hdr, {op, 0, /*dither*/ false});
     readback(graph, ldr, graph.importBuffer("ldr", &readbackBuffer, &readbackState));
     rhi::CommandList commands(*ctx_);
     graph.execute(commands.begin(), nullptr);
@@ -156,7 +157,7 @@ TEST_F(TonemapDevice, PassMatchesTheCurvesWithExactSrgb) {
     for (size_t i = 0; i < colours.size(); ++i) {
       // The fp16 image holds the input rounded to half; mirror that.
       glm::vec3 in;
-      for (int c = 0; c < 3; ++c) in[c] = halfToFloat(floatToHalf(colours[i][c])) * exposure;
+      for (int c = 0; c < 3; ++c) in[c] = halfToFloat(floatToHalf(colours[i][c] * exposure));
       const glm::vec3 display = applyTonemapper(op, in);
       for (int c = 0; c < 3; ++c) {
         const float encoded = linearToSrgb(display[c]) * 255.0f;  // exact piecewise sRGB
