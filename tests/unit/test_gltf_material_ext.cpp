@@ -76,4 +76,4 @@ TEST(GltfMaterialExt, SpecularFactorIsClampedToItsRange) {
   EXPECT_FLOAT_EQ(s.materials[1].specular, 0.0f);
 }
 
-} // namespace
+}  // namespace

@@ -175,4 +175,4 @@ TEST(ObjVertexColors, PlainPositionsHaveNone) {
   EXPECT_TRUE(s->meshes.at(0).primitives.at(0).colors.empty());
 }
 
-} // namespace
+}  // namespace
