@@ -5,6 +5,10 @@
 // whose emitters differ greatly in radiance pay some variance for it. Textured emission is
 // evaluated per sample (TEXCOORD_0). Animated instances keep their upload-time positions here.
 // Emissive analytic spheres are not in the list: BSDF rays find them (with MIS weight 1).
+// Unlit materials (KHR_materials_unlit) are emitters of their base colour (× texture × vertex
+// colour, looked up through `geometry` and `primitive`): the path tracer sees them with the same
+// radiance from every direction, so they join the list and MIS stays unbiased for them.
+
 #include <algorithm>
 
 #include "render/gpu_scene.h"
@@ -13,15 +17,18 @@
 
 namespace rayster::render {
 
-void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs) {
+void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, const std::vector<uint32_t>& meshFirstGeometry,
+                             GpuScene& gs) {
   std::vector<gpu::EmissiveTriangle> rows;
   double area = 0;
   for (const scene::Instance& inst : scene.instances) {
     if (!inst.castsShadows) continue;  // a light's visible shape: the light itself is sampled
     const scene::Mesh& mesh = scene.meshes[inst.mesh];
-    for (const scene::Primitive& prim : mesh.primitives) {
+    for (size_t primIndex = 0; primIndex < mesh.primitives.size(); ++primIndex) {
+      const scene::Primitive& prim = mesh.primitives[primIndex];
       if (prim.material >= scene.materials.size()) continue;
-      const glm::vec3 e = scene.materials[prim.material].emissive;
+      const scene::Material& material = scene.materials[prim.material];
+      const glm::vec3 e = material.unlit ? glm::vec3(material.baseColor) : material.emissive;
       if (std::max(e.x, std::max(e.y, e.z)) <= 0.0f) continue;
       for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
         gpu::EmissiveTriangle t{};
@@ -37,6 +44,8 @@ void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, GpuSc
         area += a;
         t.cdf = float(area);
         t.material = prim.material;
+        t.geometry = meshFirstGeometry[inst.mesh] + uint32_t(primIndex);
+        t.primitive = uint32_t(i / 3);
         rows.push_back(t);
       }
     }

@@ -15,15 +15,16 @@ layout(location = 3) in vec2 inUv0;
 layout(location = 4) in vec2 inUv1;
 layout(location = 5) in vec3 inPrevWorldPos;
 layout(location = 6) flat in uvec2 inDraw;  // instance, geometry
+layout(location = 7) in vec4 inColor;
 
 void main() {
   InstanceRecord inst = Instances(frame.instances).i[inDraw.x];
   GeometryRecord g = Geometries(frame.geometries).g[inDraw.y];
   MaterialRecord m = Materials(frame.materials).m[g.material];
-  if (alphaRejects(m, inUv0, inUv1, alphaNoise(uvec2(gl_FragCoord.xy)))) discard;
+  if (alphaRejects(m, inUv0, inUv1, inColor.a, alphaNoise(uvec2(gl_FragCoord.xy)))) discard;
   // The geometric normal from the triangle itself, exactly as the traced producer computes it.
   vec3 p0, p1, p2;
   trianglePositions(g, inst, uint(gl_PrimitiveID), p0, p1, p2);
-  SurfacePoint sp = SurfacePoint(inWorldPos, inNormal, inTangent, cross(p1 - p0, p2 - p0), inUv0, inUv1);
+  SurfacePoint sp = SurfacePoint(inWorldPos, inNormal, inTangent, cross(p1 - p0, p2 - p0), inUv0, inUv1, inColor);
   writeGBuffer(evaluateSurface(m, sp, frame.cameraPosition.xyz), inDraw.x, motionFromWorld(inWorldPos, inPrevWorldPos));
 }

@@ -103,17 +103,21 @@ TEST(VertexColors, MultiplyBaseColourAndAlphaInEveryMode) {
     for (const Mean* m : {&red, &green, &blue, &whiteCorner}) ASSERT_GT(m->pixels, 20);
     std::printf("[colors] %-13s red %s green %s blue %s white %s\n", mode.name, fmtRgb(red.rgb).c_str(),
                 fmtRgb(green.rgb).c_str(), fmtRgb(blue.rgb).c_str(), fmtRgb(whiteCorner.rgb).c_str());
-    // Each corner is mostly its own colour (the diagonal blends in a little of the opposite one).
-    EXPECT_GT(red.rgb.r, 0.6);
-    EXPECT_LT(red.rgb.g, 0.25);
-    EXPECT_GT(green.rgb.g, 0.6);
-    EXPECT_LT(green.rgb.r, 0.25);
-    EXPECT_LT(green.rgb.b, 0.25);
-    EXPECT_GT(blue.rgb.b, 0.6);
-    EXPECT_LT(blue.rgb.g, 0.25);
-    EXPECT_GT(whiteCorner.rgb.r, 0.6);
-    EXPECT_GT(whiteCorner.rgb.g, 0.6);
-    EXPECT_GT(whiteCorner.rgb.b, 0.6);
+    // Each corner is mostly its own colour: 0.8 of it in the hybrid, a few percent less in the path
+    // tracer (single-scattering GGX at roughness 1 loses what the hybrid's split keeps). The two
+    // triangles blend in the other corners' colours over their barycentric weights (about 0.2).
+    EXPECT_GT(red.rgb.r, 0.5);
+    EXPECT_LT(red.rgb.g, 0.3);
+    EXPECT_LT(red.rgb.b, 0.3);
+    EXPECT_GT(green.rgb.g, 0.5);
+    EXPECT_LT(green.rgb.r, 0.3);
+    EXPECT_LT(green.rgb.b, 0.3);
+    EXPECT_GT(blue.rgb.b, 0.5);
+    EXPECT_LT(blue.rgb.r, 0.3);
+    EXPECT_LT(blue.rgb.g, 0.3);
+    EXPECT_GT(whiteCorner.rgb.r, 0.5);
+    EXPECT_GT(whiteCorner.rgb.g, 0.5);
+    EXPECT_GT(whiteCorner.rgb.b, 0.5);
     // The cut-out: vertex alpha × base alpha against the cutoff, in raster (discard) and traced
     // (any-hit) visibility alike.
     const Mean kept = meanWhere(r.hdr, s.camera, inRect(0.3f, -0.7f, 0.8f, 0.7f));
@@ -139,7 +143,8 @@ TEST(Unlit, ShowsItsBaseColourUnlitUnshadowedInEveryMode) {
   flat.unlit = true;
   s.models.push_back({"floor", unitQuad(), flat, glm::vec3(6, 6, 1), glm::vec3(-90, 0, 0), glm::vec3(0)});
   const float boxX = 1.2f;  // off the axis, so that the mirror's middle reflects open floor
-  s.models.push_back({"box", unitBox(), MaterialSpec{glm::vec3(0.5f)}, glm::vec3(1), glm::vec3(0), glm::vec3(boxX, 1.5f, 0)});
+  s.models.push_back(
+      {"box", unitBox(), MaterialSpec{glm::vec3(0.5f)}, glm::vec3(1), glm::vec3(0), glm::vec3(boxX, 1.5f, 0)});
   s.models.push_back({"mirror", unitQuad(), MaterialSpec{glm::vec3(1.0f), 1.0f, 0.0f}, glm::vec3(6, 3, 1), glm::vec3(0),
                       glm::vec3(0, 1.5f, -3)});
   s.lights = {R"({"type": "directional", "direction": [0, -1, 0], "intensity": 5, "angularRadius": 0})"};
@@ -211,7 +216,8 @@ TEST(Unlit, ShowsItsBaseColourUnlitUnshadowedInEveryMode) {
     // In a mirror of reflectance 1: the hybrid's split-sum lobe albedo and the denoiser's blur
     // at reflected edges cost a few percent; the raster mode's screen-space reflections more.
     const double tol = std::string(mode.name) == "raster" ? 0.1 : 0.04;
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(mirror.rgb[c], base[c], tol * base[c] + 0.005) << "channel " << c << " in the mirror";
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(mirror.rgb[c], base[c], tol * base[c] + 0.005) << "channel " << c << " in the mirror";
   }
 }
 
@@ -343,5 +349,42 @@ TEST(Specular, ReflectionScalesAndTintsAsTheExtensionSays) {
   }
 }
 
-} // namespace
-} // namespace rayster::test::analytic
+// The energy split: white diffuse quads under a uniform environment of radiance 1, rough (1), one
+// with the default specular, one with specularColor red. The extension takes from the diffuse
+// layer what the dielectric lobe's largest channel reflects (1 − max F), so the tinted quad's green
+// and blue carry its diffuse layer alone, (1 − F)·1 with F ≈ F0 = 0.04 (the red lobe's): 0.96,
+// where the per-channel rule 1 − F_green would give 1.
+TEST(Specular, DiffuseKeepsWhatTheLargestChannelLeaves) {
+  auto dir = testDir();
+  SceneSpec s;
+  MaterialSpec white{glm::vec3(1.0f), 0.0f, 1.0f}, tinted = white;
+  tinted.specularColor = glm::vec3(1.0f, 0.0f, 0.0f);
+  s.models = {{"white", unitQuad(), white, glm::vec3(1.8f, 1.8f, 1), glm::vec3(0), glm::vec3(-1, 0, 0)},
+              {"tinted", unitQuad(), tinted, glm::vec3(1.8f, 1.8f, 1), glm::vec3(0), glm::vec3(1, 0, 0)}};
+  s.lights = {darkLight()};
+  s.environment = uniformEnvironment(1.0f);
+  s.camera = {{0, 0, 6}, {0, 0, 0}, 40};
+  const auto scene = writeScene(dir, "split", s);
+  std::vector<double> greens;
+  for (const ModeSpec& mode : kModes) {
+    SCOPED_TRACE(mode.name);
+    Rendered r = renderHdr(dir, mode.name, scene, kSize, kSize, mode.frames, "", mode.args);
+    ASSERT_FALSE(r.hdr.empty());
+    const Mean w = meanWhere(r.hdr, s.camera, inRect(-1.7f, -0.7f, -0.3f, 0.7f));
+    const Mean t = meanWhere(r.hdr, s.camera, inRect(0.3f, -0.7f, 1.7f, 0.7f));
+    ASSERT_EQ(w.pixels, t.pixels);
+    ASSERT_GT(w.pixels, 200);
+    std::printf("[specular split] %-13s white %s tinted %s\n", mode.name, fmtRgb(w.rgb).c_str(), fmtRgb(t.rgb).c_str());
+    EXPECT_NEAR(t.rgb.r / w.rgb.r, 1.0, 0.01) << "red: the same lobe and the same diffuse layer";
+    EXPECT_NEAR(t.rgb.g, t.rgb.b, 1e-3);
+    // (The path tracer integrates 1 − Schlick(v·h) over the incident directions, a little below 0.96.)
+    EXPECT_NEAR(t.rgb.g, 0.96, 0.01) << "green: the diffuse layer alone, 1 − F of the red channel";
+    greens.push_back(t.rgb.g);
+  }
+  // The diffuse layer alone is the same integral in both (no split-sum approximation of a lobe):
+  // hybrid and path tracer within 1 %.
+  for (size_t i = 0; i + 1 < greens.size(); ++i) EXPECT_NEAR(greens[i] / greens.back(), 1.0, 0.01) << kModes[i].name;
+}
+
+}  // namespace
+}  // namespace rayster::test::analytic
