@@ -5,6 +5,10 @@
 // whose emitters differ greatly in radiance pay some variance for it. Textured emission is
 // evaluated per sample (TEXCOORD_0). Animated instances keep their upload-time positions here.
 // Emissive analytic spheres are not in the list: BSDF rays find them (with MIS weight 1).
+// Unlit materials (KHR_materials_unlit) are emitters of their base colour (× texture × vertex
+// colour, looked up through `geometry` and `primitive`): the path tracer sees them with the same
+// radiance from every direction, so they join the list and MIS stays unbiased for them.
+
 #include <algorithm>
 
 #include "render/gpu_scene.h"
@@ -13,25 +17,28 @@
 
 namespace rayster::render {
 
-void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs) {
+void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, const std::vector<uint32_t>& meshFirstGeometry,
+                             GpuScene& gs) {
   std::vector<gpu::EmissiveTriangle> rows;
   double area = 0;
   for (const scene::Instance& inst : scene.instances) {
     if (!inst.castsShadows) continue;  // a light's visible shape: the light itself is sampled
     const scene::Mesh& mesh = scene.meshes[inst.mesh];
-    // Corners in front-side order: a mirroring transform turns the world winding, and the sampler
-    // takes the front from cross(p1 − p0, p2 − p0) (single-sided emitters light only their front).
+    // A mirroring transform turns the world winding: the sampler's front is cross(p1 − p0, p2 − p0) ×
+    // frontSign (single-sided emitters light only their front).
     const bool mirrored = glm::determinant(glm::mat3(inst.worldFromObject)) < 0.0f;
-    for (const scene::Primitive& prim : mesh.primitives) {
+    for (size_t primIndex = 0; primIndex < mesh.primitives.size(); ++primIndex) {
+      const scene::Primitive& prim = mesh.primitives[primIndex];
       if (prim.material >= scene.materials.size()) continue;
-      const glm::vec3 e = scene.materials[prim.material].emissive;
+      const scene::Material& material = scene.materials[prim.material];
+      const glm::vec3 e = material.unlit ? glm::vec3(material.baseColor) : material.emissive;
       if (std::max(e.x, std::max(e.y, e.z)) <= 0.0f) continue;
       for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
         gpu::EmissiveTriangle t{};
         glm::vec3* p[3] = {&t.p0, &t.p1, &t.p2};
         glm::vec2* uv[3] = {&t.uv0, &t.uv1, &t.uv2};
         for (int k = 0; k < 3; ++k) {
-          const uint32_t v = prim.indices[i + (mirrored && k > 0 ? 3 - k : k)];
+          const uint32_t v = prim.indices[i + k];
           *p[k] = glm::vec3(inst.worldFromObject * glm::vec4(prim.positions[v], 1.0f));
           *uv[k] = v < prim.uvs.size() ? prim.uvs[v] : glm::vec2(0.0f);
         }
@@ -40,6 +47,9 @@ void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, GpuSc
         area += a;
         t.cdf = float(area);
         t.material = prim.material;
+        t.frontSign = mirrored ? -1.0f : 1.0f;
+        t.geometry = meshFirstGeometry[inst.mesh] + uint32_t(primIndex);
+        t.primitive = uint32_t(i / 3);
         rows.push_back(t);
       }
     }

@@ -1,5 +1,18 @@
 // Materials, samplers and textures: every image gets a full mip chain and, for colour data, an sRGB
 // view; each (texture, colour-or-linear) use gets one bindless slot.
+//
+// KHR_materials_unlit (gpu::kMaterialUnlit) means one thing in every mode and for every ray: the
+// surface emits its base colour (× base colour texture × vertex colour) as radiance and reflects
+// nothing. Surface evaluation writes that colour as emission and zero albedo and specular, so the
+// hybrid's lighting, shadows, reflections, AO and indirect passes, the raster mode and SSR need no
+// special case: camera rays see the colour unlit and unshadowed (then exposed and tonemapped like
+// everything else), and reflection, refraction and indirect rays see the same colour. In the path
+// tracer it is an emitter like any emissive surface (render/gpu_emissive.cpp): it lights what is
+// around it, as its colour seen in a mirror implies it must for the image to be consistent, and as
+// the hybrid's indirect rays already count it. (A surface visible to camera and mirror rays but not
+// to diffuse ones would need a per-path flag and would break the reference's consistency; the spec
+// leaves rays other than the camera's to the renderer, since it means unlit for baked or stylised
+// colour.)
 #include <map>
 
 #include "render/gpu_scene.h"
@@ -59,7 +72,8 @@ void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs)
     r.roughness = m.roughness;
     r.flags = (m.doubleSided ? gpu::kMaterialDoubleSided : 0u) | (m.cullsBackFaces() ? gpu::kMaterialCullsBackFaces : 0u) |
               (m.alphaMode == scene::AlphaMode::Mask ? gpu::kMaterialAlphaMask : 0u) |
-              (m.alphaMode == scene::AlphaMode::Blend ? gpu::kMaterialAlphaBlend : 0u);
+              (m.alphaMode == scene::AlphaMode::Blend ? gpu::kMaterialAlphaBlend : 0u) |
+              (m.unlit ? gpu::kMaterialUnlit : 0u);
     r.alphaCutoff = m.alphaCutoff;
     r.normalScale = m.normalScale;
     r.occlusionStrength = m.occlusionStrength;
@@ -75,14 +89,19 @@ void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs)
     r.normalTexture = slotFor(m.normalTexture, false);
     r.occlusionTexture = slotFor(m.occlusionTexture, false);
     r.emissiveTexture = slotFor(m.emissiveTexture, true);
+    r.specularTexture = slotFor(m.specularTexture, false);  // A only: no sRGB (alpha is linear in both views)
+    r.specularColorTexture = slotFor(m.specularColorTexture, true);
     rows.push_back(r);
   }
   if (rows.empty()) {
     gpu::MaterialRecord r{};
     r.baseColor = glm::vec4(0.8f);
     r.roughness = 1.0f;
+    r.ior = 1.5f;
+    r.specular = 1.0f;
+    r.specularColor = glm::vec3(1.0f);
     for (gpu::TextureSlot* t : {&r.baseColorTexture, &r.metallicRoughnessTexture, &r.normalTexture,
-                                &r.occlusionTexture, &r.emissiveTexture})
+                                &r.occlusionTexture, &r.emissiveTexture, &r.specularTexture, &r.specularColorTexture})
       *t = {gpu::kNoTexture, 0, 0, 0, glm::vec2(0), glm::vec2(1)};
     rows.push_back(r);
   }

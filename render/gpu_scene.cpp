@@ -86,8 +86,20 @@ void addTriangles(rhi::Context& ctx, const scene::Scene& scene, const scene::Pri
       rhi::createBufferWithData(ctx, std::as_bytes(std::span(vertices)), geometryUsage(ctx), "vertices"));
   const rhi::Buffer& ib = gs.indexBuffers.emplace_back(
       rhi::createBufferWithData(ctx, std::as_bytes(std::span(prim.indices)), geometryUsage(ctx), "indices"));
+  uint64_t colorAddress = 0;  // no COLOR_0: white, and no buffer (gpu::GeometryRecord::colorAddress)
+  if (!prim.colors.empty()) {
+    std::vector<glm::uvec2> colors(prim.colors.size());
+    for (size_t i = 0; i < colors.size(); ++i) {
+      const glm::uvec4 c(glm::round(glm::clamp(prim.colors[i], 0.0f, 1.0f) * 65535.0f));
+      colors[i] = {c.r | (c.g << 16), c.b | (c.a << 16)};  // unpackUnorm2x16's order: low half first
+    }
+    colorAddress = gs.colorBuffers
+                       .emplace_back(rhi::createBufferWithData(ctx, std::as_bytes(std::span(colors)),
+                                                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "vertex-colors"))
+                       .address();
+  }
   rows.push_back({vb.address(), ib.address(), prim.material, uint32_t(vertices.size()),
-                  uint32_t(prim.indices.size()), gpu::kGeometryTriangles});
+                  uint32_t(prim.indices.size()), gpu::kGeometryTriangles, colorAddress});
   blas.push_back({0, 0, vb.address(), sizeof(gpu::Vertex), uint32_t(vertices.size()), ib.address(),
                   uint32_t(prim.indices.size()),
                   !alphaTested(scene, prim.material) && !(mixedSides && cullsBackFaces(scene, prim.material))});
@@ -110,7 +122,7 @@ void addSpheres(rhi::Context& ctx, const scene::Scene& scene, const std::vector<
   const rhi::Buffer& sb = gs.indexBuffers.emplace_back(
       rhi::createBufferWithData(ctx, std::as_bytes(std::span(records)), geometryUsage(ctx), "spheres"));
   rows.push_back({sb.address(), ab.address(), records.front().material, uint32_t(records.size()), 0,
-                  gpu::kGeometrySpheres});
+                  gpu::kGeometrySpheres, 0});
   blas.push_back({uint32_t(boxes.size()), ab.address(), 0, 0, 0, 0, 0, opaque});
 }
 
@@ -213,7 +225,7 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     drawRows.push_back({d.instance, d.geometry, d.count, d.spheres ? gpu::kDrawSpheres : 0u, d.aabbMin, d.aabbMax});
   gs.drawRecords = tableBuffer(ctx, drawRows, "draw-records");
   gs.cull = createCullBuffers(ctx, uint32_t(gs.draws.size()));
-  uploadEmissiveTriangles(ctx, scene, gs);
+  uploadEmissiveTriangles(ctx, scene, meshFirstGeometry, gs);
   for (const auto& inputs : blasInputs)
     for (const rhi::BlasGeometry& g : inputs) gs.anyHit = gs.anyHit || !g.opaque;
   gs.bounds = scene.bounds();

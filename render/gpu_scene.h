@@ -44,6 +44,7 @@ struct GpuScene {
   };
   std::vector<rhi::Buffer> vertexBuffers;  // one per primitive (AABBs for sphere sets)
   std::vector<rhi::Buffer> indexBuffers;   // one per primitive (SphereRecords for sphere sets)
+  std::vector<rhi::Buffer> colorBuffers;   // one per primitive with vertex colours (RGBA16 UNORM)
   rhi::Buffer geometries, instances, materials, lights;
   std::vector<rhi::Image> textures;
   std::vector<rhi::Sampler> samplers;
@@ -89,8 +90,10 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene);
 void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs);
 // Environment map and its irradiance (render/gpu_environment.cpp).
 void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs);
-// The path tracer's emissive-triangle list (render/gpu_emissive.cpp).
-void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs);
+// The path tracer's emissive-triangle list (render/gpu_emissive.cpp); `meshFirstGeometry`: each
+// mesh's first GeometryRecord row.
+void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, const std::vector<uint32_t>& meshFirstGeometry,
+                             GpuScene& gs);
 // The split-sum DFG table of glossy reflections, into the bindless array (render/gpu_environment.cpp).
 void uploadDfgTable(rhi::Context& ctx, GpuScene& gs);
 // Uploads RGBA8 pixels to a sampled image with a full mip chain (render/gpu_materials.cpp).

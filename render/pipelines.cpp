@@ -32,7 +32,8 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   g.globalSet = textures;
   g.vertex = "gbuffer.vert";
   g.fragment = "gbuffer.frag";
-  g.colorFormats = {kNormalFormat, kAlbedoFormat, kMaterialFormat, kEmissiveFormat, kIdFormat, kMotionFormat};
+  g.colorFormats = {kNormalFormat, kAlbedoFormat, kMaterialFormat, kEmissiveFormat,
+                    kIdFormat,     kMotionFormat, kSpecularFormat};
   g.depthFormat = kDepthFormat;
   g.bindings = {{0, kUniform}};
   g.pushConstantBytes = 16;  // DrawRecord[] and this list's draw ids (render/passes/cull.h)
@@ -60,15 +61,16 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   p.shadowSpheres = rhi::createGraphicsPipeline(ctx, shadowMap);
   const rhi::Binding resolve[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kUniform}, {5, kStorage}};
   p.shadowResolve = rhi::createComputePipeline(ctx, "shadow_resolve.comp", resolve, 0);
-  const rhi::Binding ssr[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled},
-                              {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage}};
+  const rhi::Binding ssr[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled},
+                              {5, kSampled}, {6, kSampled}, {7, kStorage}, {8, kSampled}};
   p.ssr = rhi::createComputePipeline(ctx, "ssr.comp", ssr, 0, textures);
   const rhi::Binding constants[] = {{0, kStorage}, {1, kStorage}};
   p.rasterConstants = rhi::createComputePipeline(ctx, "raster_constants.comp", constants, 8);
   p.denoise = DenoisePipelines::create(ctx);
   const rhi::Binding lighting[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled},
                                    {4, kSampled}, {5, kSampled}, {6, kSampled}, {7, kStorage},
-                                   {8, kSampled}, {9, kSampled}, {10, kSampled}, {11, kSampled}};
+                                   {8, kSampled}, {9, kSampled}, {10, kSampled}, {11, kSampled},
+                                   {12, kSampled}};
   p.lighting = rhi::createComputePipeline(ctx, "lighting.comp", lighting, 0, textures);
   const rhi::Binding taa[] = {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kStorage}};
   p.taa = rhi::createComputePipeline(ctx, "taa.comp", taa, 16);
@@ -89,7 +91,7 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   primary.hitGroups = kRadianceHitGroups;
   primary.globalSet = textures;
   primary.bindings = {{0, kUniform}, {1, kTlas},    {2, kStorage}, {3, kStorage}, {4, kStorage},
-                      {5, kStorage}, {6, kStorage}, {7, kStorage}, {8, kStorage}};
+                      {5, kStorage}, {6, kStorage}, {7, kStorage}, {8, kStorage}, {9, kStorage}};
   p.gbufferTraced = rhi::RayTracingPipeline(ctx, primary);
 
   // Shadow rays skip closest hit: the miss shader marks visibility, any-hit tests alpha.
@@ -106,7 +108,7 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   specular.miss = {"primary.rmiss", "shadow.rmiss"};  // radiance rays miss 0, shadow rays miss 1
   specular.hitGroups = primary.hitGroups;
   specular.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
-                       {6, kStorage}, {7, kSampled}};
+                       {6, kStorage}, {7, kSampled}, {8, kSampled}};
   specular.globalSet = textures;
   p.specular = rhi::RayTracingPipeline(ctx, specular);
 
@@ -116,7 +118,7 @@ Pipelines Pipelines::create(rhi::Context& ctx, VkDescriptorSetLayout textures) {
   direct.hitGroups = shadow.hitGroups;
   direct.globalSet = textures;
   direct.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
-                     {6, kStorage}};
+                     {6, kStorage}, {7, kSampled}, {8, kSampled}};
   p.direct = rhi::RayTracingPipeline(ctx, direct);
   // AO rays are shadow rays of another length: same miss and hit groups.
   rhi::RayTracingPipelineDesc ao = shadow;
@@ -162,8 +164,8 @@ RawRayPipelines RawRayPipelines::create(rhi::Context& ctx, VkDescriptorSetLayout
   bounce.bindings = {{0, kUniform}, {1, kTlas}, {2, kSampled}, {3, kSampled}, {4, kStorage}};
   p.indirect = rhi::RayTracingPipeline(ctx, bounce);
   bounce.raygen = "raw_specular.rgen";
-  bounce.bindings = {{0, kUniform}, {1, kTlas},    {2, kSampled}, {3, kSampled},
-                     {4, kSampled}, {5, kSampled}, {6, kStorage}, {7, kSampled}};
+  bounce.bindings = {{0, kUniform}, {1, kTlas},    {2, kSampled}, {3, kSampled}, {4, kSampled},
+                     {5, kSampled}, {6, kStorage}, {7, kSampled}, {8, kSampled}};
   p.specular = rhi::RayTracingPipeline(ctx, bounce);
   return p;
 }

@@ -13,6 +13,7 @@ inline constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SNORM;
 inline constexpr VkFormat kAlbedoFormat = VK_FORMAT_R8G8B8A8_UNORM;
 inline constexpr VkFormat kMaterialFormat = VK_FORMAT_R8G8B8A8_UNORM;
 inline constexpr VkFormat kEmissiveFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kSpecularFormat = VK_FORMAT_R8G8B8A8_UNORM;  // encodeSpecular(): 8 bits keep ~1 % steps
 inline constexpr VkFormat kIdFormat = VK_FORMAT_R32_UINT;
 inline constexpr VkFormat kMotionFormat = VK_FORMAT_R16G16_SFLOAT;  // uvCurrent − uvPrevious
 inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;

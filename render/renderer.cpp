@@ -19,10 +19,11 @@ namespace rayster::render {
 
 const std::vector<std::string>& aovNames() {
   static const std::vector<std::string> names = [] {
-    std::vector<std::string> n = {"depth",           "normal",         "albedo",       "material",
-                                  "emissive",        "motion",         "shadow-raw",   "shadow-denoised",
-                                  "reflection-raw",  "reflection-denoised", "ao-raw",  "ao-denoised",
-                                  "indirect-raw",    "indirect-denoised"};
+    std::vector<std::string> n = {"depth",          "normal",          "albedo",
+                                  "material",       "emissive",        "specular",
+                                  "motion",         "shadow-raw",      "shadow-denoised",
+                                  "reflection-raw", "reflection-denoised", "ao-raw",
+                                  "ao-denoised",    "indirect-raw",    "indirect-denoised"};
     // Per shadowed light: layer i of the visibility arrays ("shadow-raw" is layer 0).
     for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-raw");
     for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-denoised");

@@ -90,6 +90,7 @@ void Renderer::Impl::addReadbacks(graph::RenderGraph& graph, const GBuffer& gb, 
       {"albedo", {gb.albedo, 0}},
       {"material", {gb.material, 0}},
       {"emissive", {gb.emissive, 0}},
+      {"specular", {gb.specular, 0}},  // encoded (lib/common.glsl encodeSpecular)
       {"motion", {gb.motion, 0}},
       {"shadow-raw", {images.shadowRaw, 0}},
       {"shadow-denoised", {images.shadow, 0}},

@@ -99,6 +99,25 @@ TextureRef textureRef(const MaterialContext& ctx, int index, int texCoord, const
   return ref;
 }
 
+// A textureInfo inside a material extension (tinygltf parses only the core ones): index, texCoord
+// and its own KHR_texture_transform.
+TextureRef extensionTexture(const MaterialContext& ctx, const tinygltf::Value& ext, const char* key,
+                            const std::string& material) {
+  if (!ext.Has(key) || !ext.Get(key).IsObject()) return {};
+  const tinygltf::Value& info = ext.Get(key);
+  tinygltf::ExtensionMap extensions;
+  if (info.Has("extensions") && info.Get("extensions").IsObject()) {
+    const tinygltf::Value& e = info.Get("extensions");
+    for (const std::string& name : e.Keys()) extensions[name] = e.Get(name);
+  }
+  // Numbers from the file, kept in int range before the conversion (textureRef checks the rest).
+  auto integer = [&](const char* name, double fallback) {
+    const double v = numberOr(info, name, fallback);
+    return v >= -1.0 && v < 1e9 ? int(v) : int(1e9);
+  };
+  return textureRef(ctx, integer("index", -1), integer("texCoord", 0), extensions, material);
+}
+
 Material convertMaterial(const MaterialContext& ctx, const tinygltf::Material& src, size_t index) {
   Material m;
   m.name = src.name.empty() ? fmt::format("material{}", index) : src.name;
@@ -138,9 +157,16 @@ Material convertMaterial(const MaterialContext& ctx, const tinygltf::Material& s
     m.attenuationDistance = distance > 0.0 && distance < FLT_MAX ? float(distance) : FLT_MAX;
   }
   if (const tinygltf::Value* e = extension(src.extensions, "KHR_materials_specular")) {
-    m.specular = finiteOr(numberOr(*e, "specularFactor", 1.0), 1.0f);
-    m.specularColor = valueVectorOr<3>(*e, "specularColorFactor", glm::vec3(1.0f));
+    // The schema's ranges: specularFactor in [0, 1], specularColorFactor >= 0 (unbounded above:
+    // F0(η) × colour is clamped to 1 where it is used).
+    m.specular = glm::clamp(finiteOr(numberOr(*e, "specularFactor", 1.0), 1.0f), 0.0f, 1.0f);
+    m.specularColor = glm::max(valueVectorOr<3>(*e, "specularColorFactor", glm::vec3(1.0f)), glm::vec3(0.0f));
+    m.specularTexture = extensionTexture(ctx, *e, "specularTexture", m.name);
+    m.specularColorTexture = extensionTexture(ctx, *e, "specularColorTexture", m.name);
   }
+  // Unlit ignores every other property but the base colour (and alpha): the renderer reads only
+  // those when the flag is set.
+  m.unlit = extension(src.extensions, "KHR_materials_unlit") != nullptr;
   return m;
 }
 

@@ -1,4 +1,5 @@
 // glTF meshes -> scene::Mesh: triangle primitives, attributes, indices, generated flat normals.
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -42,6 +43,7 @@ void generateFlatNormals(Primitive& prim) {
   expand(prim.tangents);
   expand(prim.uvs);
   expand(prim.uvs1);
+  expand(prim.colors);
   for (size_t i = 0; i < prim.indices.size(); ++i) prim.indices[i] = uint32_t(i);
   prim.normals.assign(prim.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
   for (size_t t = 0; t + 2 < prim.positions.size(); t += 3) {
@@ -62,6 +64,38 @@ uint32_t defaultMaterial(MeshBuilder& builder) {
     builder.scene.materials.push_back(material);
   }
   return *builder.defaultMaterial;
+}
+
+// COLOR_0 as linear RGBA (VEC3: alpha 1). The spec allows float and normalized unsigned byte or
+// short; anything else is dropped with a warning (the primitive renders white), since colours are
+// decoration, unlike positions or indices. Float values are clamped to [0, 1], NaN to 1.
+Result<std::vector<glm::vec4>> readColors(const tinygltf::Model& model, int index, const std::string& file,
+                                          const std::string& where) {
+  if (index < 0 || size_t(index) >= model.accessors.size()) return bad(file, "{}: COLOR_0 accessor {} does not exist", where, index);
+  const tinygltf::Accessor& acc = model.accessors[size_t(index)];
+  const bool normalizedInteger =
+      acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                         acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  if ((acc.type != TINYGLTF_TYPE_VEC3 && acc.type != TINYGLTF_TYPE_VEC4) ||
+      (acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !normalizedInteger)) {
+    log::warn("{}: {}: COLOR_0 is not float or normalized unsigned byte/short VEC3/VEC4; vertex colours ignored",
+              file, where);
+    return std::vector<glm::vec4>{};
+  }
+  std::vector<glm::vec4> colors;
+  if (acc.type == TINYGLTF_TYPE_VEC3) {
+    auto rgb = readVec3(model, index, file);
+    if (!rgb) return rgb.error();
+    colors.reserve(rgb->size());
+    for (const glm::vec3& c : *rgb) colors.emplace_back(c, 1.0f);
+  } else {
+    auto rgba = readVec4(model, index, file);
+    if (!rgba) return rgba.error();
+    colors = std::move(*rgba);
+  }
+  for (glm::vec4& c : colors)
+    for (int k = 0; k < 4; ++k) c[k] = std::isnan(c[k]) ? 1.0f : std::clamp(c[k], 0.0f, 1.0f);
+  return colors;
 }
 
 // "mesh 'name'" or, for unnamed meshes, "mesh 3".
@@ -121,6 +155,13 @@ Result<Primitive> convertPrimitive(MeshBuilder& builder, const tinygltf::Mesh& m
     if (!uvs) return uvs.error();
     RAYSTER_TRY(checkCount(uvs->size(), "TEXCOORD_1"));
     prim.uvs1 = std::move(*uvs);
+  }
+
+  if (int a = attribute(src, "COLOR_0"); a >= 0) {
+    auto colors = readColors(model, a, file, fmt::format("{} primitive {}", label, primIndex));
+    if (!colors) return colors.error();
+    if (!colors->empty()) RAYSTER_TRY(checkCount(colors->size(), "COLOR_0"));
+    prim.colors = std::move(*colors);
   }
 
   if (src.indices >= 0) {

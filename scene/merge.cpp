@@ -34,7 +34,7 @@ void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
   }
   for (Material& m : src.materials) {
     for (TextureRef* ref : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
-                            &m.emissiveTexture})
+                            &m.emissiveTexture, &m.specularTexture, &m.specularColorTexture})
       rebase(*ref, textureBase);
     dst.materials.push_back(std::move(m));
   }

@@ -320,6 +320,13 @@ struct PrimitiveBuilder {
       if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
     }
     prim.uvs.push_back(uv);
+    // `v x y z r g b`: tinyobjloader keeps colours only when every vertex line has them (we ask
+    // for no white fallback). Read as linear, like glTF's COLOR_0, clamped to [0, 1].
+    if (a.colors.size() == a.vertices.size()) {
+      glm::vec3 c = glm::clamp(toVec3(&a.colors[3 * static_cast<size_t>(idx.vertex_index)]), 0.0f, 1.0f);
+      if (!std::isfinite(c.x + c.y + c.z)) c = glm::vec3(1.0f);
+      prim.colors.emplace_back(c, 1.0f);
+    }
   }
 
   // Area-weighted smooth normals, accumulated per OBJ vertex; scratch is all zero on entry and exit.

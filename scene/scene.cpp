@@ -28,6 +28,8 @@ Status validatePrimitive(const Scene& scene, const Mesh& mesh, size_t meshIndex,
     return makeError(ExitCode::BadInput, "{}: {} uvs for {} positions", where, prim.uvs.size(), vertexCount);
   if (!prim.uvs1.empty() && prim.uvs1.size() != vertexCount)
     return makeError(ExitCode::BadInput, "{}: {} second uvs for {} positions", where, prim.uvs1.size(), vertexCount);
+  if (!prim.colors.empty() && prim.colors.size() != vertexCount)
+    return makeError(ExitCode::BadInput, "{}: {} colours for {} positions", where, prim.colors.size(), vertexCount);
   if (!prim.tangents.empty() && prim.tangents.size() != vertexCount)
     return makeError(ExitCode::BadInput, "{}: {} tangents for {} positions", where, prim.tangents.size(), vertexCount);
   if (prim.indices.size() % 3 != 0)
@@ -120,7 +122,8 @@ Status validate(const Scene& scene) {
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     const Material& mat = scene.materials[i];
     for (const TextureRef* t : {&mat.baseColorTexture, &mat.metallicRoughnessTexture, &mat.normalTexture,
-                                &mat.occlusionTexture, &mat.emissiveTexture})
+                                &mat.occlusionTexture, &mat.emissiveTexture, &mat.specularTexture,
+                                &mat.specularColorTexture})
       if (t->valid() && (size_t(t->texture) >= scene.textures.size() || t->texCoord > 1))
         return makeError(ExitCode::BadInput, "{}: material {} '{}' uses a missing texture or UV set", sceneName, i,
                          mat.name);

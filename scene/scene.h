@@ -48,8 +48,14 @@ struct Material {
   float thickness = 0.0f;               // KHR_materials_volume; 0: thin-walled
   glm::vec3 attenuationColor{1.0f};
   float attenuationDistance = FLT_MAX;
-  float specular = 1.0f;                // KHR_materials_specular
-  glm::vec3 specularColor{1.0f};
+  // KHR_materials_specular: the dielectric lobe's strength (F0 and F90) and its F0 tint.
+  float specular = 1.0f;                // [0, 1]
+  glm::vec3 specularColor{1.0f};        // linear, >= 0; may exceed 1 (F0 × colour is clamped to 1)
+  TextureRef specularTexture;           // linear: A multiplies specular
+  TextureRef specularColorTexture;      // sRGB: RGB multiplies specularColor
+  // KHR_materials_unlit: the surface shows its base colour (× vertex colour × texture) as emitted
+  // radiance and scatters no light (docs in render/gpu_materials.cpp).
+  bool unlit = false;
 
   // glTF: a single-sided material's back faces are not rendered, and rays ignore them. Transmissive
   // materials are the exception for rays: a refracted ray leaves a closed volume through its back
@@ -83,6 +89,7 @@ struct Primitive {
   std::vector<glm::vec4> tangents;  // xyz tangent, w bitangent sign; may be empty (generated on upload)
   std::vector<glm::vec2> uvs;       // UV set 0; may be empty
   std::vector<glm::vec2> uvs1;      // UV set 1; may be empty
+  std::vector<glm::vec4> colors;    // COLOR_0, linear RGBA in [0, 1], multiplies the base colour; empty: white
   std::vector<uint32_t> indices;    // triangle list, counter-clockwise seen from the front
   uint32_t material = 0;
 };

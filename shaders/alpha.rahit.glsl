@@ -25,5 +25,6 @@ void main() {
   // Stochastic coverage for BLEND: a fresh number per ray and primitive, so it converges over frames.
   uint rng = rngInit(gl_LaunchIDEXT.xy, frame.frameIndex ^ pcg(uint(gl_PrimitiveID) + gl_LaunchIDEXT.z * 7919u),
                      frame.seed ^ kAlphaStream);
-  if (alphaRejects(m, uv0, uv1, rnd(rng))) ignoreIntersectionEXT;
+  float vertexAlpha = vertexColor(g, uint(gl_PrimitiveID), w).a;
+  if (alphaRejects(m, uv0, uv1, vertexAlpha, rnd(rng))) ignoreIntersectionEXT;
 }

@@ -21,6 +21,8 @@ layout(set = 0, binding = 3) uniform sampler2D normalTex;
 layout(set = 0, binding = 4) uniform sampler2D albedoTex;
 layout(set = 0, binding = 5) uniform sampler2D materialTex;
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D outDirect;
+layout(set = 0, binding = 7) uniform sampler2D emissiveTex;      // .a: the exact ior
+layout(set = 0, binding = 8) uniform sampler2D specularGbufTex;  // encodeSpecular(): F0 tint, strength
 
 layout(location = 0) rayPayloadEXT uint visible;
 
@@ -66,6 +68,8 @@ void main() {
   s.roughness = mat.r;
   s.metallic = mat.g;
   s.transmission = mat.b;
+  s.ior = texelFetch(emissiveTex, px, 0).a;
+  s.specular = decodeSpecular(texelFetch(specularGbufTex, px, 0));
   s.emissive = vec3(0.0);
   s.tracedWeight = tracedSpecularWeight(s.roughness, s.transmission);
   s.envOcclusion = 1.0;  // direct light only: AO never applies to it

@@ -20,6 +20,7 @@ layout(set = 0, binding = 5, rgba8) uniform writeonly image2D outMaterial;
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D outEmissive;
 layout(set = 0, binding = 7, r32ui) uniform writeonly uimage2D outId;
 layout(set = 0, binding = 8, rg16f) uniform writeonly image2D outMotion;
+layout(set = 0, binding = 9, rgba8) uniform writeonly image2D outSpecular;
 
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
 
@@ -41,6 +42,7 @@ void main() {
     imageStore(outEmissive, px, vec4(0.0));
     imageStore(outId, px, uvec4(kBackgroundId));
     imageStore(outMotion, px, vec4(0.0));
+    imageStore(outSpecular, px, vec4(0.0));
     return;
   }
 
@@ -55,6 +57,7 @@ void main() {
   imageStore(outAlbedo, px, gb.albedo);
   imageStore(outMaterial, px, gb.material);
   imageStore(outEmissive, px, gb.emissive);
+  imageStore(outSpecular, px, encodeSpecular(gb.specular));
   imageStore(outId, px, uvec4(payload.instance));
   InstanceRecord inst = Instances(frame.instances).i[payload.instance];
   imageStore(outMotion, px, vec4(motionFromWorld(sp.position, previousWorld(inst, sp.position)), 0.0, 0.0));

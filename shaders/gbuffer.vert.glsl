@@ -16,6 +16,7 @@ layout(location = 3) out vec2 outUv0;
 layout(location = 4) out vec2 outUv1;
 layout(location = 5) out vec3 outPrevWorldPos;  // for the motion vector
 layout(location = 6) flat out uvec2 outDraw;  // instance, geometry (for the fragment shader)
+layout(location = 7) out vec4 outColor;       // COLOR_0 (white without)
 
 void main() {
   DrawRecord draw = DrawRecords(pc.records).d[DrawIds(pc.drawIds).i[gl_DrawID]];
@@ -31,5 +32,6 @@ void main() {
   outTangent = vec4((inst.worldFromObject * vec4(v.tangent.xyz, 0.0)).xyz, v.tangent.w);
   outUv0 = v.uv0;
   outUv1 = v.uv1;
+  outColor = vertexColor(g, index);
   gl_Position = frame.clipFromWorld * world;
 }

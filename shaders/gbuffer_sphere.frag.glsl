@@ -30,12 +30,12 @@ void main() {
   vec2 tex;
   vec4 tangent;
   sphereAttributes(s.center, objOrigin + t * objDir, objNormal, tex, tangent);
-  if (alphaRejects(m, tex, tex, alphaNoise(uvec2(gl_FragCoord.xy)))) discard;
+  if (alphaRejects(m, tex, tex, 1.0, alphaNoise(uvec2(gl_FragCoord.xy)))) discard;
   vec3 worldPos = origin + t * dir;
   n = (inst.normalFromObject * vec4(objNormal, 0.0)).xyz;
   vec4 worldTangent = vec4((inst.worldFromObject * vec4(tangent.xyz, 0.0)).xyz, tangent.w);
   vec4 clip = frame.clipFromWorld * vec4(worldPos, 1.0);
   gl_FragDepth = clip.z / clip.w;
-  writeGBuffer(evaluateSurface(m, SurfacePoint(worldPos, n, worldTangent, n, tex, tex), origin), inDraw.x,
+  writeGBuffer(evaluateSurface(m, SurfacePoint(worldPos, n, worldTangent, n, tex, tex, vec4(1.0)), origin), inDraw.x,
               motionFromWorld(worldPos, previousWorld(inst, worldPos)));
 }

@@ -75,7 +75,7 @@ void main() {
     surfaceAtHit(payload, origin, dir, sp, m);
     GBufferValues gb = evaluateSurface(m, sp, origin);  // normals face the ray's origin
     vec3 hn = octDecode(gb.normals.xy), hng = octDecode(gb.normals.zw);
-    SurfaceBsdf bsdf = makeBsdf(srgbToLinear(gb.albedo.rgb), gb.material.g, gb.material.r);
+    SurfaceBsdf bsdf = makeBsdf(srgbToLinear(gb.albedo.rgb), gb.material.g, gb.material.r, gb.specular, m.ior);
     bsdf.diffuse *= 1.0 - gb.material.b;
     radiance = gb.emissive.rgb + directFromOneLight(bsdf, sp.position, hn, hng, -dir, rng);
     vec3 environmentDiffuse = environmentIrradiance(hn) + frame.ambient.rgb * kPi;

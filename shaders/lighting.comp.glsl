@@ -26,6 +26,7 @@ layout(set = 0, binding = 8) uniform sampler2D specularTex;
 layout(set = 0, binding = 9) uniform sampler2DArray aoTex;  // layer frame.aoLayer: 1 unoccluded; 1 when AO is off
 layout(set = 0, binding = 10) uniform sampler2D indirectTex;  // rgb: irradiance E; read when kEffectIndirect
 layout(set = 0, binding = 11) uniform sampler2D directTex;  // many-light mode: stochastic direct light
+layout(set = 0, binding = 12) uniform sampler2D specularGbufTex;  // encodeSpecular(): F0 tint, strength
 
 ivec2 gPixel;
 
@@ -60,7 +61,10 @@ void main() {
   s.roughness = mat.r;
   s.metallic = mat.g;
   s.transmission = mat.b;
-  s.emissive = texelFetch(emissiveTex, px, 0).rgb;
+  vec4 emissive = texelFetch(emissiveTex, px, 0);
+  s.emissive = emissive.rgb;
+  s.ior = emissive.a;
+  s.specular = decodeSpecular(texelFetch(specularGbufTex, px, 0));
   s.tracedWeight = tracedSpecularWeight(s.roughness, s.transmission);
   s.envOcclusion = texelFetch(aoTex, ivec3(px, int(frame.aoLayer)), 0).r;
   s.useIndirect = (frame.effectFlags & kEffectIndirect) != 0u;
@@ -69,8 +73,8 @@ void main() {
   vec3 traced = texelFetch(specularTex, px, 0).rgb;
   // Glass writes radiance; opaque surfaces the lobe average, remodulated by the lobe's albedo.
   if (s.transmission <= 0.0) {
-    vec3 f0 = mix(vec3(0.04), s.baseColor, s.metallic);
-    traced *= specularAlbedo(f0, max(dot(s.n, s.v), 1e-4), s.roughness);
+    SurfaceBsdf bsdf = makeBsdf(s.baseColor, s.metallic, s.roughness, s.specular, s.ior);
+    traced *= specularAlbedo(bsdf.f0, bsdf.f90, max(dot(s.n, s.v), 1e-4), s.roughness);
   }
   bool many = frame.manyLights != 0u;
   vec3 radiance = shadeSurface(s, !many, rng) + s.tracedWeight * traced;

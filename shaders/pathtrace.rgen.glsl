@@ -177,11 +177,13 @@ vec3 tracePath(vec3 origin, vec3 dir, inout uint rng) {
       }
       radiance += beta * emission * w;
     }
+    // Unlit surfaces only emit (render/gpu_materials.cpp): the path ends there.
+    if ((m.flags & kMaterialUnlit) != 0u) break;
 
     float metallic = gb.material.g, roughness = gb.material.r;
     float glassShare = gb.material.b * (1.0 - metallic);
     vec3 baseColor = srgbToLinear(gb.albedo.rgb);
-    x.bsdf = makeBsdf(baseColor, metallic, roughness, m.ior);
+    x.bsdf = makeBsdf(baseColor, metallic, roughness, gb.specular, m.ior);
     x.pSpec = specularProbability(x.bsdf, max(dot(x.n, x.v), 1e-4));
     x.opaqueShare = 1.0 - glassShare;
     if (x.opaqueShare > 0.0) radiance += beta * x.opaqueShare * nextEvent(x, rng);
@@ -191,7 +193,8 @@ vec3 tracePath(vec3 origin, vec3 dir, inout uint rng) {
     vec3 next;
     if (rnd(rng) < glassShare) {
       vec3 weight;
-      if (!sampleDielectric(x.n, x.v, roughness, m.ior, entering, thin, baseColor, u, next, weight)) break;
+      if (!sampleDielectric(x.n, x.v, roughness, m.ior, entering, thin, baseColor, gb.specular, u, next, weight))
+        break;
       beta *= weight;
       pdf = 0.0;
     } else {

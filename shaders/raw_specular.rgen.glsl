@@ -31,6 +31,7 @@ layout(set = 0, binding = 4) uniform sampler2D albedoTex;
 layout(set = 0, binding = 5) uniform sampler2D materialTex;
 layout(set = 0, binding = 6, r16f) uniform writeonly image2D outHit;
 layout(set = 0, binding = 7) uniform sampler2D emissiveTex;
+layout(set = 0, binding = 8) uniform sampler2D specularGbufTex;
 
 layout(location = 0) rayPayloadEXT uint hitT;
 layout(location = 1) rayPayloadEXT uint visible;

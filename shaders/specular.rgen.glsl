@@ -32,6 +32,7 @@ layout(set = 0, binding = 4) uniform sampler2D albedoTex;
 layout(set = 0, binding = 5) uniform sampler2D materialTex;
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D outSpecular;
 layout(set = 0, binding = 7) uniform sampler2D emissiveTex;  // .a: the first surface's exact ior
+layout(set = 0, binding = 8) uniform sampler2D specularGbufTex;  // encodeSpecular(): F0 tint, strength
 
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
 layout(location = 1) rayPayloadEXT uint visible;
@@ -87,6 +88,8 @@ void main() {
     s.metallic = gb.material.g;
     s.roughness = gb.material.r;
     s.transmission = gb.material.b;
+    s.specular = gb.specular;
+    s.ior = m.ior;
     s.ao = gb.albedo.a;
     s.emissive = gb.emissive.rgb;
     s.tracedWeight = tracedSpecular(s.roughness, s.transmission) ? 1.0 : 0.0;
@@ -98,7 +101,7 @@ void main() {
     radiance += beta * shadeSurface(s, true, glossy || frame.manyLights != 0u, rng);
     if (!tracedSpecular(s.roughness, s.transmission)) break;  // rough: fully shaded, the path ends
     scatter(dir, origin, beta, s.p, s.n, s.ng, entering, s.baseColor, s.metallic, s.transmission, m.ior, thinHit,
-            rng);
+            gb.specular, rng);
     if (max(beta.r, max(beta.g, beta.b)) < 1e-3) break;
   }
   // Clamp fireflies of the stochastic glass paths to a bright but finite value before accumulation.

@@ -3,6 +3,7 @@
 #include "lib/frame.glsl"
 #include "lib/textures.glsl"
 #include "lib/environment.glsl"
+#include "lib/brdf.glsl"
 
 // Raster mode's specular light (what the specular pass traces in the hybrid frame), in the same
 // units the lighting pass expects: opaque surfaces get the reflected radiance (demodulated, the
@@ -20,6 +21,7 @@ layout(set = 0, binding = 4) uniform sampler2D materialTex;
 layout(set = 0, binding = 5) uniform sampler2D emissiveTex;  // .a: the exact ior
 layout(set = 0, binding = 6) uniform sampler2D litTex;
 layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D outSpecular;
+layout(set = 0, binding = 8) uniform sampler2D specularGbufTex;  // encodeSpecular(): F0 tint, strength
 
 const int kSteps = 48;             // march samples along a reflected ray
 const int kRefineSteps = 6;        // binary search between the last two samples
@@ -107,17 +109,20 @@ void main() {
     imageStore(outSpecular, px, vec4(refl, 1.0));
     return;
   }
-  // Glass: Schlick's Fresnel at the exact ior, the rest refracted and tinted by the base colour.
+  // Glass: Schlick's Fresnel at the exact ior (tinted and scaled by KHR_materials_specular), the
+  // rest refracted and tinted by the base colour.
   float ior = max(texelFetch(emissiveTex, px, 0).a, 1.0);
   float f0 = pow((ior - 1.0) / (ior + 1.0), 2.0);
   float nv = max(dot(n, v), 0.0);
-  float fresnel = f0 + (1.0 - f0) * pow(1.0 - nv, 5.0);
+  float schlick = f0 + (1.0 - f0) * pow(1.0 - nv, 5.0);
   vec3 t = refract(-v, n, 1.0 / ior);
   vec3 refr;
+  vec3 fresnel;
   if (dot(t, t) == 0.0) {
-    fresnel = 1.0;  // total internal reflection
+    fresnel = vec3(1.0);  // total internal reflection
     refr = vec3(0.0);
   } else {
+    fresnel = specularGlassFresnel(schlick, ior, decodeSpecular(texelFetch(specularGbufTex, px, 0)));
     // Step further along the refracted direction until the offset leaves the glass.
     refr = environmentRadiance(t);
     for (int k = 1; k <= kRefractionSteps; ++k) {
@@ -132,6 +137,7 @@ void main() {
     }
   }
   vec3 tint = srgbToLinear(texelFetch(albedoTex, px, 0).rgb);
-  vec3 radiance = fresnel * refl + (1.0 - fresnel) * transmission * tint * refr;
+  float reflected = max(fresnel.r, max(fresnel.g, fresnel.b));  // refraction takes what max(F) leaves
+  vec3 radiance = fresnel * refl + (1.0 - reflected) * transmission * tint * refr;
   imageStore(outSpecular, px, vec4(radiance, 1.0));
 }

@@ -33,6 +33,7 @@ GBuffer createGBufferTargets(graph::RenderGraph& graph, VkExtent2D size, bool tr
   gb.emissive = target("gbuffer-emissive", kEmissiveFormat);
   gb.id = target("gbuffer-id", kIdFormat);
   gb.motion = target("gbuffer-motion", kMotionFormat);
+  gb.specular = target("gbuffer-specular", kSpecularFormat);
   return gb;
 }
 
@@ -51,7 +52,7 @@ void drawGBuffer(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer
       late ? "gbuffer-raster-late" : "gbuffer-raster",
       [&](graph::PassBuilder& b) {
         b.write(gb.depth, graph::Use::DepthAttachment);
-        for (auto h : {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion})
+        for (auto h : {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion, gb.specular})
           b.write(h, graph::Use::ColorAttachment);
         b.read(culled.commands, graph::Use::IndirectRead);
         b.read(culled.counts, graph::Use::IndirectRead);
@@ -59,9 +60,10 @@ void drawGBuffer(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer
       },
       [gb, culled, late, &in](graph::PassContext& pc) {
         const VkAttachmentLoadOp load = late ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-        constexpr int kTargets = 6;
+        constexpr int kTargets = 7;  // in the order of the fragment outputs (lib/gbuffer_out.glsl)
         VkRenderingAttachmentInfo color[kTargets];
-        graph::ImageHandle targets[kTargets] = {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion};
+        graph::ImageHandle targets[kTargets] = {gb.normals, gb.albedo, gb.material, gb.emissive,
+                                                gb.id,      gb.motion, gb.specular};
         for (int i = 0; i < kTargets; ++i) {
           color[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
           color[i].imageView = pc.image(targets[i]).view();

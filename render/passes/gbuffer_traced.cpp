@@ -12,7 +12,7 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
   graph.addPass(
       "gbuffer-traced",
       [&](graph::PassBuilder& b) {
-        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion})
+        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion, gb.specular})
           b.write(h, graph::Use::StorageWriteRayTracing);
       },
       [gb, &in](graph::PassContext& pc) {
@@ -28,6 +28,7 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
             .storageImage(6, pc.image(gb.emissive).view())
             .storageImage(7, pc.image(gb.id).view())
             .storageImage(8, pc.image(gb.motion).view())
+            .storageImage(9, pc.image(gb.specular).view())
             .push(pc.cmd, pipe);
         bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.layout());
         pipe.trace(pc.cmd, in.size.width, in.size.height);

@@ -17,7 +17,7 @@ graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& i
       name,
       [&](graph::PassBuilder& b) {
         for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, visibility, specular, ao, indirect,
-                       directOrUnused})
+                       directOrUnused, gb.specular})
           b.read(h, graph::Use::SampledCompute);
         b.write(hdr, graph::Use::StorageWriteCompute);
       },
@@ -38,6 +38,7 @@ graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& i
             .sampledImage(9, pc.image(ao).view(), s)
             .sampledImage(10, pc.image(indirect).view(), s)
             .sampledImage(11, pc.image(directOrUnused).view(), s)
+            .sampledImage(12, pc.image(gb.specular).view(), s)
             .push(pc.cmd, pipe);
         bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.layout());
         vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);

@@ -40,6 +40,9 @@ struct GBuffer {
   graph::ImageHandle albedo;    // RGBA8: sRGB-encoded base colour
   graph::ImageHandle material;  // RGBA8: roughness, metallic, transmission, flags
   graph::ImageHandle emissive;  // RGBA16F: emitted radiance; .a the exact ior
+  // RGBA8: the dielectric lobe of KHR_materials_specular, encodeSpecular(F0 tint, strength)
+  // (lib/common.glsl); with .a of `emissive` it gives F0 and F90 (lib/brdf.glsl).
+  graph::ImageHandle specular;
   graph::ImageHandle id;        // R32_UINT instance row, kBackgroundId for sky
   // RG16F uvCurrent − uvPrevious (unjittered; TECHNIQUES.md §2): the history of a pixel is at
   // uv − motion. Camera and object motion for geometry; 0 on the background, whose (camera)

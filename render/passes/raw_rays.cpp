@@ -105,7 +105,9 @@ RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, co
   t.indirect = traceTwin(graph, in, "raw-rt-indirect", "raw-indirect", {{2, gb.depth}, {3, gb.normals}}, 4, raw.indirect,
                           indirectQuarter);
   t.specular = traceTwin(graph, in, "raw-rt-specular", "raw-specular",
-                         {{2, gb.depth}, {3, gb.normals}, {4, gb.albedo}, {5, gb.material}, {7, gb.emissive}}, 6,
+                         {{2, gb.depth}, {3, gb.normals}, {4, gb.albedo}, {5, gb.material}, {7, gb.emissive},
+                          {8, gb.specular}},
+                         6,
                          raw.specular);
   return t;
 }

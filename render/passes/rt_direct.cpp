@@ -12,7 +12,8 @@ graph::ImageHandle traceDirect(graph::RenderGraph& graph, const FrameInputs& in,
   graph.addPass(
       "rt-direct",
       [&](graph::PassBuilder& b) {
-        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material}) b.read(h, graph::Use::SampledRayTracing);
+        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, gb.specular})
+          b.read(h, graph::Use::SampledRayTracing);
         b.write(out, graph::Use::StorageWriteRayTracing);
       },
       [gb, out, &in](graph::PassContext& pc) {
@@ -27,6 +28,8 @@ graph::ImageHandle traceDirect(graph::RenderGraph& graph, const FrameInputs& in,
             .sampledImage(4, pc.image(gb.albedo).view(), s)
             .sampledImage(5, pc.image(gb.material).view(), s)
             .storageImage(6, pc.image(out).view())
+            .sampledImage(7, pc.image(gb.emissive).view(), s)
+            .sampledImage(8, pc.image(gb.specular).view(), s)
             .push(pc.cmd, pipe);
         bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.layout());
         pipe.trace(pc.cmd, in.size.width, in.size.height);

@@ -38,7 +38,7 @@ graph::ImageHandle screenSpaceSpecular(graph::RenderGraph& graph, const FrameInp
   graph.addPass(
       "ssr",
       [&](graph::PassBuilder& b) {
-        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, lit})
+        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, lit, gb.specular})
           b.read(h, graph::Use::SampledCompute);
         b.write(out, graph::Use::StorageWriteCompute);
       },
@@ -55,6 +55,7 @@ graph::ImageHandle screenSpaceSpecular(graph::RenderGraph& graph, const FrameInp
             .sampledImage(5, pc.image(gb.emissive).view(), s)
             .sampledImage(6, pc.image(lit).view(), l)
             .storageImage(7, pc.image(out).view())
+            .sampledImage(8, pc.image(gb.specular).view(), s)
             .push(pc.cmd, pipe);
         bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.layout());
         vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);

@@ -26,28 +26,69 @@ float fresnelDielectric(float cosI, float etaI, float etaT) {
   return 0.5 * (rs * rs + rp * rp);
 }
 
+// Dielectrics reflect F0 = ((η − 1)/(η + 1))² at normal incidence (0.04 at η = 1.5, kept bit for
+// bit: the constant every pass used before η was read per pixel).
+float dielectricF0(float ior) {
+  float r0 = (ior - 1.0) / (ior + 1.0);
+  return ior == 1.5 ? 0.04 : r0 * r0;
+}
+
+// KHR_materials_specular's dielectric lobe from `specular` (rgb: the F0 tint t, a: the strength s;
+// GBufferValues::specular) at index of refraction η: F0 = F0(η)·t·s, where evaluateSurface() made t
+// = min(F0(η)·specularColor, 1)/F0(η), so F0 = min(F0(η)·specularColor, 1)·specular as the extension
+// says, and F90 = s. F90 also fades to 0 with F0(η) below 0.02 (Filament), so η = 1 reflects nothing
+// at any angle. Defaults (t = 1, s = 1) give F0(η) and the old F90 exactly.
+void dielectricSpecular(vec4 specular, float ior, out vec3 f0, out float f90) {
+  float f0Ior = dielectricF0(ior);
+  f0 = f0Ior * specular.rgb * specular.a;
+  f90 = clamp(50.0 * f0Ior, 0.0, 1.0) * specular.a;
+}
+
+// A glass interface under KHR_materials_specular: the exact Fresnel reflectance `f` at η remapped
+// so that its value at normal incidence, F0(η), becomes the lobe's F0 and its grazing value 1
+// becomes F90 — Schlick's blend, with the exact curve's own angular weight (f − F0(η))/(1 − F0(η)).
+// Refraction takes what the largest channel leaves (the extension's max_value), so the caller picks
+// reflection with probability max(F) and weights it F / max(F). Total internal reflection stays
+// total; the default (t = 1, s = 1) returns f itself.
+vec3 specularGlassFresnel(float f, float ior, vec4 specular) {
+  if (f >= 1.0 || specular == vec4(1.0)) return vec3(f);
+  vec3 f0;
+  float f90;
+  dielectricSpecular(specular, ior, f0, f90);
+  float f0Ior = dielectricF0(ior);
+  float w = clamp((f - f0Ior) / max(1.0 - f0Ior, 1e-6), 0.0, 1.0);
+  return f0 + (vec3(f90) - f0) * w;
+}
+
 struct SurfaceBsdf {
   vec3 diffuse;  // albedo · (1 − metallic)
   vec3 f0;       // specular reflectance at normal incidence
-  vec3 f90;      // at grazing incidence: 1, except for dielectrics with almost no reflectance
+  vec3 f90;      // at grazing incidence: 1 for metals, the dielectric lobe's F90 otherwise
   float alpha;   // GGX α = roughness²
+  // The dielectric lobe's F0 (largest channel) and F90: the diffuse base under it keeps
+  // 1 − Schlick(these) (KHR_materials_specular's max_value: a tinted F0 takes the same energy from
+  // every channel of the diffuse layer; with a grey F0 this is the per-channel 1 − F).
+  float diffuseF0, diffuseF90;
 };
 
-// Dielectrics reflect F0 = ((η − 1)/(η + 1))² at normal incidence (0.04 at η = 1.5); F90 fades to
-// 0 with F0 below 0.02 (Filament), so η = 1 reflects nothing at any angle.
-SurfaceBsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float ior) {
+SurfaceBsdf makeBsdf(vec3 baseColor, float metallic, float roughness, vec3 dielectricF0, float dielectricF90) {
   SurfaceBsdf s;
   s.diffuse = baseColor * (1.0 - metallic);
-  float r0 = (ior - 1.0) / (ior + 1.0);
-  float f0Dielectric = ior == 1.5 ? 0.04 : r0 * r0;  // the hybrid's constant, bit for bit
-  s.f0 = mix(vec3(f0Dielectric), baseColor, metallic);
-  s.f90 = mix(vec3(clamp(50.0 * f0Dielectric, 0.0, 1.0)), vec3(1.0), metallic);
+  s.f0 = mix(dielectricF0, baseColor, metallic);
+  s.f90 = mix(vec3(dielectricF90), vec3(1.0), metallic);
+  s.diffuseF0 = max(dielectricF0.r, max(dielectricF0.g, dielectricF0.b));
+  s.diffuseF90 = dielectricF90;
   float r = clamp(roughness, 0.02, 1.0);        // a perfect mirror has no point-light highlight at all
   s.alpha = r * r;
   return s;
 }
-// The hybrid frame's dielectrics all use η = 1.5 (the G-buffer keeps only 7 bits of η).
-SurfaceBsdf makeBsdf(vec3 baseColor, float metallic, float roughness) { return makeBsdf(baseColor, metallic, roughness, 1.5); }
+// From a surface's `specular` (GBufferValues::specular) and η.
+SurfaceBsdf makeBsdf(vec3 baseColor, float metallic, float roughness, vec4 specular, float ior) {
+  vec3 f0;
+  float f90;
+  dielectricSpecular(specular, ior, f0, f90);
+  return makeBsdf(baseColor, metallic, roughness, f0, f90);
+}
 
 // BRDF × cosine for light arriving from l. `alphaWiden` widens the lobe for lights of finite size
 // (energy-conserving: GGX stays normalised), so a sphere light's highlight on a near-mirror has the
@@ -63,7 +104,7 @@ vec3 evalBsdfCos(SurfaceBsdf s, vec3 n, vec3 v, vec3 l, float alphaWiden) {
   float a2 = a * a;
   vec3 f = fresnelSchlick(s.f0, s.f90, vh);
   vec3 spec = f * (ggxD(nh, a2) * smithV(nl, nv, a2));
-  vec3 diff = (1.0 - f) * s.diffuse / kPi;
+  vec3 diff = (1.0 - fresnelSchlick(vec3(s.diffuseF0), vec3(s.diffuseF90), vh)) * s.diffuse / kPi;
   return (diff + spec) * nl;
 }
 

@@ -22,6 +22,24 @@ layout(buffer_reference, scalar) readonly buffer Instances { InstanceRecord i[];
 layout(buffer_reference, scalar) readonly buffer Materials { MaterialRecord m[]; };
 layout(buffer_reference, scalar) readonly buffer Lights { LightRecord l[]; };
 layout(buffer_reference, scalar) readonly buffer Spheres { SphereRecord s[]; };
+layout(buffer_reference, scalar) readonly buffer VertexColors { uvec2 c[]; };  // RGBA16 UNORM (GeometryRecord)
+
+vec4 unpackVertexColor(uvec2 c) { return vec4(unpackUnorm2x16(c.x), unpackUnorm2x16(c.y)); }
+
+// COLOR_0 of one vertex of a geometry (gpu::GeometryRecord::colorAddress; white without a stream).
+vec4 vertexColor(GeometryRecord g, uint vertex) {
+  if (g.colorAddress == 0ul) return vec4(1.0);
+  return unpackVertexColor(VertexColors(g.colorAddress).c[vertex]);
+}
+// ... interpolated over triangle `primitive` with barycentric weights w.
+vec4 vertexColor(GeometryRecord g, uint primitive, vec3 w) {
+  if (g.colorAddress == 0ul) return vec4(1.0);
+  Indices idx = Indices(g.indexAddress);
+  VertexColors c = VertexColors(g.colorAddress);
+  uint base = primitive * 3u;
+  return unpackVertexColor(c.c[idx.i[base]]) * w.x + unpackVertexColor(c.c[idx.i[base + 1u]]) * w.y +
+         unpackVertexColor(c.c[idx.i[base + 2u]]) * w.z;
+}
 
 // Octahedral normal encoding (TECHNIQUES.md §1).
 vec2 octEncode(vec3 n) {
@@ -43,6 +61,22 @@ vec3 linearToSrgb(vec3 c) {
 vec3 srgbToLinear(vec3 c) {
   return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
 }
+
+// The G-buffer's specular target (RGBA8 UNORM; GBufferValues::specular): rgb the dielectric F0 tint
+// t (F0 = F0(η)·t·strength, lib/brdf.glsl), a the strength. t is stored as code/128 up to code 128
+// (t = 1, the default, exactly) and 128/(256 − code) above (up to 128, for specular colours that
+// raise F0 towards 1), so both halves keep ~1 % steps where tints are used.
+vec3 encodeSpecularTint(vec3 t) {
+  t = max(t, vec3(0.0));
+  vec3 code = mix(round(256.0 - 128.0 / max(t, vec3(1.0))), round(128.0 * t), lessThanEqual(t, vec3(1.0)));
+  return clamp(code, 0.0, 255.0) / 255.0;
+}
+vec3 decodeSpecularTint(vec3 e) {
+  vec3 code = round(e * 255.0);
+  return mix(128.0 / max(256.0 - code, vec3(1.0)), code / 128.0, lessThanEqual(code, vec3(128.0)));
+}
+vec4 encodeSpecular(vec4 specular) { return vec4(encodeSpecularTint(specular.rgb), specular.a); }
+vec4 decodeSpecular(vec4 texel) { return vec4(decodeSpecularTint(texel.rgb), texel.a); }
 
 // PCG hash (Jarzynski & Olano 2020); seeds go through the hash (TECHNIQUES.md §3).
 uint pcg(uint v) {

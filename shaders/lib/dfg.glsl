@@ -1,4 +1,4 @@
-// The split-sum DFG table (render/dfg.h) from the bindless array: (A, B) with F0·A + B the
+// The split-sum DFG table (render/dfg.h) from the bindless array: (A, B) with F0·A + F90·B the
 // directional albedo of the GGX specular lobe at (n·v, perceptual roughness).
 // Needs lib/frame.glsl and lib/textures.glsl.
 #ifndef RAYSTER_DFG_GLSL
@@ -10,9 +10,11 @@ vec2 dfgTerms(float nv, float roughness) {
   return textureLod(textures[nonuniformEXT(frame.dfgSlot)], uv, 0.0).rg;
 }
 
-vec3 specularAlbedo(vec3 f0, float nv, float roughness) {
+// With KHR_materials_specular's F90 (a dielectric lobe of strength s reflects F90 = s at grazing
+// angles): F0·A + F90·B.
+vec3 specularAlbedo(vec3 f0, vec3 f90, float nv, float roughness) {
   vec2 ab = dfgTerms(nv, roughness);
-  return f0 * ab.x + ab.y;
+  return f0 * ab.x + f90 * ab.y;
 }
 
 #endif

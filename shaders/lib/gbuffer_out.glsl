@@ -5,6 +5,7 @@ layout(location = 2) out vec4 outMaterial;
 layout(location = 3) out vec4 outEmissive;
 layout(location = 4) out uint outId;
 layout(location = 5) out vec2 outMotion;
+layout(location = 6) out vec4 outSpecular;
 
 void writeGBuffer(GBufferValues gb, uint id, vec2 motion) {
   outNormals = gb.normals;
@@ -13,6 +14,7 @@ void writeGBuffer(GBufferValues gb, uint id, vec2 motion) {
   outEmissive = gb.emissive;
   outId = id;
   outMotion = motion;
+  outSpecular = encodeSpecular(gb.specular);
 }
 
 // Per-pixel, per-frame coverage noise for alpha BLEND (stochastic transparency).

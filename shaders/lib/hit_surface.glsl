@@ -21,6 +21,7 @@ void surfaceAtHit(PrimaryPayload payload, vec3 origin, vec3 dir, out SurfacePoin
     sp.tangent = vec4((inst.worldFromObject * vec4(tangent.xyz, 0.0)).xyz, tangent.w);
     sp.uv0 = tex;
     sp.uv1 = tex;
+    sp.color = vec4(1.0);
   } else {
     m = Materials(frame.materials).m[g.material];
     Indices idx = Indices(g.indexAddress);
@@ -38,6 +39,7 @@ void surfaceAtHit(PrimaryPayload payload, vec3 origin, vec3 dir, out SurfacePoin
     sp.geometricNormal = windingNormal(inst, p0, p1, p2);
     sp.uv0 = v0.uv0 * w.x + v1.uv0 * w.y + v2.uv0 * w.z;
     sp.uv1 = v0.uv1 * w.x + v1.uv1 * w.y + v2.uv1 * w.z;
+    sp.color = vertexColor(g, payload.primitive, w);
   }
 }
 

@@ -45,9 +45,10 @@ vec3 sampleOpaque(SurfaceBsdf b, float pSpec, vec3 n, vec3 v, vec3 u) {
 
 // The glass interface: `n` faces v; `entering` from outside the volume (the winding); thin walls
 // transmit unbent. False when the sample leaves on the wrong side (the path ends). The weight is
-// f·cos/pdf: G2/G1 (1 for smooth glass), × `tint` for transmission.
-bool sampleDielectric(vec3 n, vec3 v, float roughness, float ior, bool entering, bool thin, vec3 tint, vec3 u,
-                      out vec3 l, out vec3 weight) {
+// f·cos/pdf: G2/G1 (1 for smooth glass), × `tint` for transmission; KHR_materials_specular's
+// `specular` tints and scales the reflection (specularGlassFresnel(), lib/brdf.glsl).
+bool sampleDielectric(vec3 n, vec3 v, float roughness, float ior, bool entering, bool thin, vec3 tint, vec4 specular,
+                      vec3 u, out vec3 l, out vec3 weight) {
   float etaI = (entering || thin) ? 1.0 : ior, etaT = (entering || thin) ? ior : 1.0;
   float alpha = roughness * roughness;
   vec3 t, bt;
@@ -56,8 +57,11 @@ bool sampleDielectric(vec3 n, vec3 v, float roughness, float ior, bool entering,
   vec3 ht = alpha > kSmoothAlpha ? sampleGgxVndf(vt, alpha, u.xy) : vec3(0.0, 0.0, 1.0);
   vec3 h = toWorld(t, bt, n, ht);
   float f = fresnelDielectric(clamp(dot(v, h), 0.0, 1.0), etaI, etaT);
+  vec3 fr = specularGlassFresnel(f, ior, specular);
+  float pr = max(fr.r, max(fr.g, fr.b));
   weight = vec3(1.0);
-  if (u.z < f) {
+  if (u.z < pr) {
+    weight = fr / pr;
     l = reflect(-v, h);
     if (dot(l, n) <= 0.0) return false;
   } else {

@@ -1,7 +1,7 @@
 // Light sampling of the path tracer beyond lib/lights.glsl: solid-angle densities of sphere and sun
 // lights (for MIS), BSDF rays hitting a sphere light, the emissive-triangle list
 // (render/gpu_emissive.cpp) and the environment's 2D CDF (render/gpu_environment.cpp).
-// Needs lib/lights.glsl, lib/environment.glsl and lib/textures.glsl.
+// Needs lib/lights.glsl, lib/environment.glsl, lib/textures.glsl and lib/surface.glsl.
 #ifndef RAYSTER_PT_LIGHTS_GLSL
 #define RAYSTER_PT_LIGHTS_GLSL
 
@@ -48,9 +48,15 @@ uint hitSphereLight(vec3 origin, vec3 dir, float tMax, out float tHit) {
   return hit;
 }
 
-// Emission of an emissive triangle's material at uv (as evaluateSurface() computes it).
-vec3 triangleEmission(uint material, vec2 uv) {
-  MaterialRecord m = Materials(frame.materials).m[material];
+// Emission of an emissive triangle at barycentrics w (as evaluateSurface() computes it): unlit
+// materials emit their base colour × texture × vertex colour.
+vec3 triangleEmission(EmissiveTriangle t, vec3 w) {
+  MaterialRecord m = Materials(frame.materials).m[t.material];
+  vec2 uv = t.uv0 * w.x + t.uv1 * w.y + t.uv2 * w.z;
+  if ((m.flags & kMaterialUnlit) != 0u) {
+    vec4 color = vertexColor(Geometries(frame.geometries).g[t.geometry], t.primitive, w);
+    return frame.exposure * m.baseColor.rgb * SAMPLE_SLOT(m.baseColorTexture, uv, uv, vec4(1.0)).rgb * color.rgb;
+  }
   return exposedEmission(m) * SAMPLE_SLOT(m.emissiveTexture, uv, uv, vec4(1.0)).rgb;
 }
 
@@ -67,8 +73,8 @@ void sampleEmissive(vec3 u, vec3 x, out vec3 q, out vec3 nq, out vec3 emission) 
   float su = sqrt(u.y);
   vec3 w = vec3(1.0 - su, su * (1.0 - u.z), su * u.z);
   q = t.p0 * w.x + t.p1 * w.y + t.p2 * w.z;
-  nq = normalize(cross(t.p1 - t.p0, t.p2 - t.p0));  // the front side (render/gpu_emissive.cpp)
-  emission = triangleEmission(t.material, t.uv0 * w.x + t.uv1 * w.y + t.uv2 * w.z);
+  nq = normalize(cross(t.p1 - t.p0, t.p2 - t.p0)) * t.frontSign;  // the front side
+  emission = triangleEmission(t, w);
   // A single-sided emitter has no back face for rays (lib/ray_flags.glsl): it lights only its front.
   if ((Materials(frame.materials).m[t.material].flags & kMaterialCullsBackFaces) != 0u && dot(nq, x - q) <= 0.0)
     emission = vec3(0.0);

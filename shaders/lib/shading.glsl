@@ -20,6 +20,8 @@ struct ShadingInput {
   float metallic;
   float roughness;
   float transmission;
+  vec4 specular;       // KHR_materials_specular: F0 tint and strength (GBufferValues::specular, decoded)
+  float ior;           // for the dielectric F0 (the exact one: the G-buffer's emissive.a)
   float ao;            // the material's occlusion texture
   vec3 emissive;
   float tracedWeight;  // share of the specular light traced elsewhere (tracedSpecularWeight()); not added here
@@ -32,16 +34,23 @@ struct ShadingTerms {
   SurfaceBsdf bsdf;
   float w;  // share of the specular light traced elsewhere (s.tracedWeight)
   vec3 fv;  // directional specular albedo (Fresnel at the view angle)
+  float fvDiffuse;  // the dielectric lobe's, largest channel: what the diffuse layer under it loses
 };
+
+// Fresnel at the view angle, blurred with roughness (its grazing rise fades as the lobe widens).
+vec3 viewFresnel(vec3 f0, vec3 f90, float roughness, float nv) {
+  return f0 + (max(f90 * (1.0 - roughness), f0) - f0) * pow(1.0 - nv, 5.0);
+}
 
 ShadingTerms shadingTerms(ShadingInput s) {
   ShadingTerms t;
-  t.bsdf = makeBsdf(s.baseColor, s.metallic, s.roughness);
+  t.bsdf = makeBsdf(s.baseColor, s.metallic, s.roughness, s.specular, s.ior);
   // Transmitted light leaves through the specular path; what is left scatters diffusely.
   t.bsdf.diffuse *= 1.0 - s.transmission;
   t.w = s.tracedWeight;
   float nv = max(dot(s.n, s.v), 1e-4);
-  t.fv = t.bsdf.f0 + (max(vec3(1.0 - s.roughness), t.bsdf.f0) - t.bsdf.f0) * pow(1.0 - nv, 5.0);
+  t.fv = viewFresnel(t.bsdf.f0, t.bsdf.f90, s.roughness, nv);
+  t.fvDiffuse = viewFresnel(vec3(t.bsdf.diffuseF0), vec3(t.bsdf.diffuseF90), s.roughness, nv).r;
   return t;
 }
 
@@ -54,7 +63,7 @@ vec3 shadeLight(ShadingInput s, ShadingTerms t, uint i, inout uint rng) {
   if (all(equal(incident, vec3(0.0)))) return vec3(0.0);
   // The traced reflection already sees the light's visible shape: only the diffuse layer for its share.
   float nl = max(dot(s.n, l), 0.0);
-  vec3 f = t.w * (1.0 - t.fv) * t.bsdf.diffuse / kPi * nl;
+  vec3 f = t.w * (1.0 - t.fvDiffuse) * t.bsdf.diffuse / kPi * nl;
   if (t.w < 1.0) {
     float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
     f += (1.0 - t.w) * evalBsdfCos(t.bsdf, s.n, s.v, l, 0.5 * widen);
@@ -95,7 +104,7 @@ vec3 shadeSurface(ShadingInput s, bool direct, bool onePick, inout uint rng) {
   ShadingTerms t = shadingTerms(s);
   SurfaceBsdf bsdf = t.bsdf;
   const float w = t.w;
-  vec3 fv = t.fv;
+  float fd = t.fvDiffuse;
   float occlusion = s.ao * s.envOcclusion;
 
   // Uniform ambient radiance stands in for indirect light: the traced indirect replaces its diffuse part.
@@ -105,15 +114,15 @@ vec3 shadeSurface(ShadingInput s, bool direct, bool onePick, inout uint rng) {
   // Diffuse: from the traced indirect rays (their misses see the environment, so the SH term would
   // count it twice), else the SH irradiance scaled by AO. Specular (the untraced share) along the
   // mirror direction, blurred towards the irradiance as roughness grows, scaled by AO.
-  if (s.useIndirect) radiance += bsdf.diffuse * s.indirect / kPi * (1.0 - fv) * s.ao;
+  if (s.useIndirect) radiance += bsdf.diffuse * s.indirect / kPi * (1.0 - fd) * s.ao;
   if (frame.environmentKind != kEnvironmentBlack) {
-    if (!s.useIndirect) radiance += bsdf.diffuse * environmentIrradiance(s.n) / kPi * (1.0 - fv) * occlusion;
+    if (!s.useIndirect) radiance += bsdf.diffuse * environmentIrradiance(s.n) / kPi * (1.0 - fd) * occlusion;
     if (w < 1.0) {
       vec3 r = reflect(-s.v, s.n);
       vec3 specularEnv = (frame.effectFlags & kEffectPrefilteredEnv) != 0u
                              ? environmentSpecular(r, s.roughness)
                              : mix(environmentRadiance(r), environmentIrradiance(r) / kPi, s.roughness);
-      radiance += (1.0 - w) * fv * specularEnv * occlusion;
+      radiance += (1.0 - w) * t.fv * specularEnv * occlusion;
     }
   }
   return radiance;

@@ -1,27 +1,33 @@
 // The specular path's scattering events and its first ray from a G-buffer pixel (TECHNIQUES.md §10,
 // §11), shared by specular.rgen and its raw-rate twin raw_specular.rgen so both trace the same first
-// rays. The includer declares depthTex, normalTex, albedoTex, materialTex and emissiveTex. Needs
+// rays. The includer declares depthTex, normalTex, albedoTex, materialTex, emissiveTex and
+// specularGbufTex (the G-buffer's KHR_materials_specular target). Needs
 // lib/brdf.glsl, lib/dfg.glsl, lib/light_ray.glsl, lib/specular_weight.glsl and shared/vndf.h.
 #ifndef RAYSTER_SPECULAR_PATH_GLSL
 #define RAYSTER_SPECULAR_PATH_GLSL
 
 // One specular event at a surface. `n`, `ng` face the incoming ray; `entering`: the ray is outside
-// the object (for closed meshes, by the triangle's winding). Updates the ray and the throughput.
+// the object (for closed meshes, by the triangle's winding); `specular`: KHR_materials_specular's
+// F0 tint and strength (GBufferValues::specular). Updates the ray and the throughput.
 void scatter(inout vec3 dir, inout vec3 origin, inout vec3 beta, vec3 p, vec3 n, vec3 ng, bool entering,
-             vec3 baseColor, float metallic, float transmission, float ior, bool thinWalled, inout uint rng) {
+             vec3 baseColor, float metallic, float transmission, float ior, bool thinWalled, vec4 specular,
+             inout uint rng) {
   float cosI = clamp(dot(-dir, n), 0.0, 1.0);
   vec3 next;
   if (transmission <= 0.0) {
     // Opaque: the mirror lobe with Schlick Fresnel (metals tint it with their base colour).
-    vec3 f0 = mix(vec3(0.04), baseColor, metallic);
-    beta *= f0 + (1.0 - f0) * pow(1.0 - cosI, 5.0);
+    SurfaceBsdf b = makeBsdf(baseColor, metallic, 0.0, specular, ior);
+    beta *= fresnelSchlick(b.f0, b.f90, cosI);
     next = reflect(dir, n);
   } else {
     float etaI = entering ? 1.0 : ior;  // glass in air; GLSL refract() wants etaI / etaT
     float etaT = entering ? ior : 1.0;
     float f = thinWalled ? fresnelDielectric(cosI, 1.0, ior) : fresnelDielectric(cosI, etaI, etaT);
-    if (rnd(rng) < f) {
-      next = reflect(dir, n);  // chosen with probability F: the weight F/F is 1
+    vec3 fr = specularGlassFresnel(f, ior, specular);
+    float pr = max(fr.r, max(fr.g, fr.b));
+    if (rnd(rng) < pr) {
+      beta *= fr / pr;         // chosen with probability max(F): 1 unless the reflection is tinted
+      next = reflect(dir, n);
     } else {
       // Chosen with probability 1−F; the diffuse share (1−transmission) is the lighting pass's.
       beta *= transmission * baseColor;
@@ -108,6 +114,7 @@ bool specularFirstRay(ivec2 px, out vec3 origin, out vec3 dir, out vec3 beta, ou
   unpackIor(mat.a, ior, thin);
   // Entering with the 7-bit ior and leaving with the exact one would make a slab a prism.
   ior = texelFetch(emissiveTex, px, 0).a;
+  vec4 specular = decodeSpecular(texelFetch(specularGbufTex, px, 0));
   rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kSpecularStream);
 
   dir = normalize(p - frame.cameraPosition.xyz);
@@ -116,7 +123,7 @@ bool specularFirstRay(ivec2 px, out vec3 origin, out vec3 dir, out vec3 beta, ou
   float nextDepth = uintBitsToFloat(floatBitsToUint(depth) + 1u);
   float depthError = distance(p, worldFromDepth(frame.worldFromClip, uv, nextDepth));
   if (mat.b > 0.0) {
-    scatter(dir, origin, beta, p, n, ng, true, baseColor, mat.g, mat.b, ior, thin, rng);
+    scatter(dir, origin, beta, p, n, ng, true, baseColor, mat.g, mat.b, ior, thin, specular, rng);
   } else if (!firstReflection(dir, origin, beta, p, n, ng, mat.r, uvec2(px))) {
     result = vec4(0.0, 0.0, 0.0, 1.0);  // the sample left below the surface
     return false;

@@ -1,7 +1,9 @@
 // Surface evaluation shared by both G-buffer producers (raster and traced primary rays), so they
-// write identical values for the same surface point. Needs lib/textures.glsl.
+// write identical values for the same surface point, and by every ray hit. Needs lib/textures.glsl.
 #ifndef RAYSTER_SURFACE_GLSL
 #define RAYSTER_SURFACE_GLSL
+
+#include "lib/brdf.glsl"
 
 // material.w packs what the bounce loop needs at the first interface: the index of refraction
 // (1..3 in 7 bits) and whether the surface is thin-walled (no volume: KHR_materials_volume absent).
@@ -19,6 +21,9 @@ struct GBufferValues {
   vec4 albedo;    // rgb: sRGB-encoded base colour, a: material ambient occlusion
   vec4 material;  // roughness, metallic, transmission, packIor(ior, thin-walled)
   vec4 emissive;  // rgb: linear radiance
+  // KHR_materials_specular (lib/brdf.glsl dielectricSpecular()): rgb the dielectric F0 tint, a the
+  // strength. Unencoded here, so ray hits use it exactly; the G-buffer stores encodeSpecular() of it.
+  vec4 specular;
 };
 
 struct SurfacePoint {
@@ -28,6 +33,7 @@ struct SurfacePoint {
   vec3 geometricNormal;  // from the triangle (or the sphere)
   vec2 uv0;
   vec2 uv1;
+  vec4 color;            // COLOR_0, interpolated (white without)
 };
 
 // The triangle's normal from its world positions, outward for counter-clockwise fronts: a mirroring
@@ -47,15 +53,15 @@ void trianglePositions(GeometryRecord g, InstanceRecord inst, uint primitive, ou
   p2 = (inst.worldFromObject * vec4(vtx.v[idx.i[base + 2u]].position, 1.0)).xyz;
 }
 
-// Coverage of a surface point: base colour alpha × texture alpha.
-float materialAlpha(MaterialRecord m, vec2 uv0, vec2 uv1) {
-  return m.baseColor.a * SAMPLE_SLOT(m.baseColorTexture, uv0, uv1, vec4(1.0)).a;
+// Coverage of a surface point: base colour alpha × texture alpha × vertex colour alpha.
+float materialAlpha(MaterialRecord m, vec2 uv0, vec2 uv1, float vertexAlpha) {
+  return m.baseColor.a * SAMPLE_SLOT(m.baseColorTexture, uv0, uv1, vec4(1.0)).a * vertexAlpha;
 }
 
 // Alpha test for MASK (cutoff) and BLEND (stochastic coverage against `u`, converging over frames).
-bool alphaRejects(MaterialRecord m, vec2 uv0, vec2 uv1, float u) {
+bool alphaRejects(MaterialRecord m, vec2 uv0, vec2 uv1, float vertexAlpha, float u) {
   if ((m.flags & (kMaterialAlphaMask | kMaterialAlphaBlend)) == 0u) return false;
-  float a = materialAlpha(m, uv0, uv1);
+  float a = materialAlpha(m, uv0, uv1, vertexAlpha);
   return (m.flags & kMaterialAlphaMask) != 0u ? a < m.alphaCutoff : a <= u;
 }
 
@@ -74,7 +80,17 @@ GBufferValues evaluateSurface(MaterialRecord m, SurfacePoint sp, vec3 cameraPos)
   if (dot(ng, cameraPos - sp.position) < 0.0) ng = -ng;
   if (dot(ns, ng) < 0.0) ns = -ns;
 
-  vec4 base = m.baseColor * SAMPLE_SLOT(m.baseColorTexture, sp.uv0, sp.uv1, vec4(1.0));
+  vec4 base = m.baseColor * SAMPLE_SLOT(m.baseColorTexture, sp.uv0, sp.uv1, vec4(1.0)) * sp.color;
+  GBufferValues o;
+  if ((m.flags & kMaterialUnlit) != 0u) {
+    // Unlit (render/gpu_materials.cpp): the base colour is emitted radiance; nothing scatters.
+    o.normals = vec4(octEncode(ns), octEncode(ng));
+    o.albedo = vec4(0.0, 0.0, 0.0, 1.0);
+    o.material = vec4(1.0, 0.0, 0.0, packIor(m.ior, true));  // rough: no pass traces its reflection
+    o.emissive = vec4(base.rgb * frame.exposure, m.ior);  // emitted light is pre-exposed (lib/frame.glsl)
+    o.specular = vec4(0.0);
+    return o;
+  }
   vec4 mr = SAMPLE_SLOT(m.metallicRoughnessTexture, sp.uv0, sp.uv1, vec4(1.0));
   float roughness = clamp(m.roughness * mr.g, 0.0, 1.0);
   float metallic = clamp(m.metallic * mr.b, 0.0, 1.0);
@@ -90,12 +106,18 @@ GBufferValues evaluateSurface(MaterialRecord m, SurfacePoint sp, vec3 cameraPos)
   }
   float ao = 1.0 + m.occlusionStrength * (SAMPLE_SLOT(m.occlusionTexture, sp.uv0, sp.uv1, vec4(1.0)).r - 1.0);
   vec3 emissive = exposedEmission(m) * SAMPLE_SLOT(m.emissiveTexture, sp.uv0, sp.uv1, vec4(1.0)).rgb;
+  // KHR_materials_specular: the F0 tint t = min(F0(η)·colour, 1)/F0(η) (at η = 1, F0(η) = 0 and the
+  // tint is moot: keep the colour, bounded by the encoding's range).
+  float strength = m.specular * SAMPLE_SLOT(m.specularTexture, sp.uv0, sp.uv1, vec4(1.0)).a;
+  vec3 color = m.specularColor * SAMPLE_SLOT(m.specularColorTexture, sp.uv0, sp.uv1, vec4(1.0)).rgb;
+  float f0Ior = dielectricF0(m.ior);
+  vec3 tint = f0Ior > 0.0 ? min(f0Ior * color, vec3(1.0)) / f0Ior : min(color, vec3(128.0));
 
-  GBufferValues o;
   o.normals = vec4(octEncode(ns), octEncode(ng));
   o.albedo = vec4(linearToSrgb(base.rgb), ao);
   o.material = vec4(roughness, metallic, m.transmission, packIor(m.ior, m.thickness <= 0.0));
   o.emissive = vec4(emissive, m.ior);  // the exact ior (fp16): material.a holds only 7 bits of it
+  o.specular = vec4(tint, clamp(strength, 0.0, 1.0));
   return o;
 }
 

@@ -40,6 +40,10 @@ RAYSTER_CONST uint kMaterialDoubleSided = 1u;
 RAYSTER_CONST uint kMaterialAlphaMask = 2u;   // alpha test against alphaCutoff (any-hit, discard)
 RAYSTER_CONST uint kMaterialAlphaBlend = 4u;  // stochastic (hashed) coverage, converges over frames
 RAYSTER_CONST uint kMaterialCullsBackFaces = 16u;  // scene::Material::cullsBackFaces(): rays ignore back faces
+// KHR_materials_unlit: only emits its base colour (× texture × vertex colour), scatters nothing.
+// Surface evaluation turns it into emission with zero albedo and specular (lib/surface.glsl), so no
+// pass that shades needs to know; the path tracer ends paths there and samples it as an emitter.
+RAYSTER_CONST uint kMaterialUnlit = 8u;
 
 // GeometryRecord::kind
 RAYSTER_CONST uint kGeometryTriangles = 0u;
@@ -107,6 +111,11 @@ struct GeometryRecord {
   uint vertexCount;
   uint indexCount;
   uint kind;
+  // COLOR_0: one RGBA16 UNORM colour per vertex (a uvec2, unpackUnorm2x16 twice), 0: white. A
+  // stream of its own, present only where the file has colours, rather than a Vertex member: most
+  // scenes have none, and every vertex of every scene would pay 8–16 bytes (14–29 % of Vertex) for
+  // them. 16 bits hold 8- and 16-bit sources exactly and float ones to 1.5e-5.
+  uint64_t colorAddress;
 };
 
 // One per TLAS instance; gl_InstanceCustomIndexEXT is its row.
@@ -141,6 +150,8 @@ struct MaterialRecord {
   TextureSlot normalTexture;
   TextureSlot occlusionTexture;
   TextureSlot emissiveTexture;   // sRGB view
+  TextureSlot specularTexture;       // KHR_materials_specular: A × specular
+  TextureSlot specularColorTexture;  // sRGB view: RGB × specularColor
 };
 
 struct LightRecord {
@@ -164,12 +175,12 @@ struct EmissiveTriangle {
   vec3 p1;
   uint material;
   vec3 p2;
-  float pad0;
+  float frontSign;  // +1, or −1 under a mirroring transform: cross(p1 − p0, p2 − p0) · frontSign faces front
   vec2 uv0;  // TEXCOORD_0 at the corners: the emissive texture's lookup
   vec2 uv1;
   vec2 uv2;
-  float pad1;
-  float pad2;
+  uint geometry;   // GeometryRecord row and triangle: vertex colours of unlit emitters
+  uint primitive;
 };
 
 struct FrameConstants {
@@ -273,11 +284,13 @@ struct HizPush {
 static_assert(sizeof(Vertex) == 56);
 static_assert(sizeof(SphereRecord) == 32);
 static_assert(sizeof(TextureSlot) == 32);
-static_assert(sizeof(GeometryRecord) == 32);
+static_assert(sizeof(GeometryRecord) == 40);
+static_assert(offsetof(GeometryRecord, colorAddress) == 32);
 static_assert(sizeof(InstanceRecord) == 208);
 static_assert(offsetof(InstanceRecord, firstGeometry) == 128);
 static_assert(offsetof(MaterialRecord, baseColorTexture) == 96);
-static_assert(sizeof(MaterialRecord) == 256);
+static_assert(offsetof(MaterialRecord, specularTexture) == 256);
+static_assert(sizeof(MaterialRecord) == 320);
 static_assert(sizeof(LightRecord) == 64);
 static_assert(offsetof(FrameConstants, size) == 160);
 static_assert(offsetof(FrameConstants, environment) == 192);

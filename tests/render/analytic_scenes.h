@@ -31,6 +31,13 @@ struct MaterialSpec {
   float transmission = 0.0f;
   float ior = 1.5f;
   float thickness = 0.0f;  // > 0: a volume (refracts through its back face); 0: thin-walled
+  bool unlit = false;      // KHR_materials_unlit
+  float specular = 1.0f;   // KHR_materials_specular
+  glm::vec3 specularColor{1.0f};
+  std::string specularTexture;       // a PNG in the scene's folder (A: specular), or none
+  std::string specularColorTexture;  // a PNG in the scene's folder (RGB, sRGB), or none
+  std::string alphaMode = "OPAQUE";
+  float alphaCutoff = 0.5f;
 };
 
 inline MaterialSpec blackAbsorber() { return {glm::vec3(0.0f), 1.0f, 1.0f}; }  // black rough metal: reflects nothing
@@ -50,6 +57,7 @@ inline MaterialSpec glass(float ior, float thickness) {
 struct Mesh {
   std::vector<float> positions, normals;  // xyz per vertex
   std::vector<uint32_t> indices;          // counter-clockwise seen from the side the normal points to
+  std::vector<uint8_t> colors;            // RGBA per vertex (COLOR_0, normalized bytes), or none
 };
 
 // The unit square [-0.5, 0.5]² in the plane z = 0, facing +Z.
@@ -109,6 +117,8 @@ inline void writeGltf(const std::filesystem::path& dir, const std::string& name,
   appendBytes(buf, mesh.positions);
   appendBytes(buf, mesh.normals);
   appendBytes(buf, mesh.indices);
+  const size_t colorOffset = buf.size();  // 4-byte aligned: everything before is 4-byte data
+  appendBytes(buf, mesh.colors);
   const size_t vertexBytes = mesh.positions.size() * 4, vertices = mesh.positions.size() / 3;
   glm::vec3 lo(1e30f), hi(-1e30f);
   for (size_t i = 0; i < vertices; ++i) {
@@ -124,26 +134,69 @@ inline void writeGltf(const std::filesystem::path& dir, const std::string& name,
   if (mat.transmission > 0 || mat.ior != 1.5f) extensions += fmt::format(R"(, "KHR_materials_ior": {{"ior": {}}})", mat.ior);
   if (mat.thickness > 0)
     extensions += fmt::format(R"(, "KHR_materials_volume": {{"thicknessFactor": {}}})", mat.thickness);
+  if (mat.unlit) extensions += R"(, "KHR_materials_unlit": {})";
+  // Textures: one image and texture per file, in the order first used.
+  std::vector<std::string> images;
+  auto textureIndex = [&](const std::string& file) {
+    for (size_t i = 0; i < images.size(); ++i)
+      if (images[i] == file) return i;
+    images.push_back(file);
+    return images.size() - 1;
+  };
+  if (mat.specular != 1.0f || mat.specularColor != glm::vec3(1.0f) || !mat.specularTexture.empty() ||
+      !mat.specularColorTexture.empty()) {
+    std::string spec = fmt::format(R"("specularFactor": {}, "specularColorFactor": {})", mat.specular,
+                                   vec3Json(mat.specularColor));
+    if (!mat.specularTexture.empty())
+      spec += fmt::format(R"(, "specularTexture": {{"index": {}}})", textureIndex(mat.specularTexture));
+    if (!mat.specularColorTexture.empty())
+      spec += fmt::format(R"(, "specularColorTexture": {{"index": {}}})", textureIndex(mat.specularColorTexture));
+    extensions += fmt::format(R"(, "KHR_materials_specular": {{{}}})", spec);
+  }
+  std::string textures;
+  if (!images.empty()) {
+    std::string imageList, textureList;
+    for (size_t i = 0; i < images.size(); ++i) {
+      imageList += fmt::format(R"({}{{"uri": "{}"}})", i ? ", " : "", images[i]);
+      textureList += fmt::format(R"({}{{"source": {}}})", i ? ", " : "", i);
+    }
+    textures = fmt::format(R"(,
+  "images": [{}], "textures": [{}])", imageList, textureList);
+  }
+  std::string colorAttribute, colorParts;
+  if (!mesh.colors.empty()) {
+    colorAttribute = R"(, "COLOR_0": 3)";
+    colorParts = fmt::format(R"(, {{"bufferView": 3, "componentType": 5121, "normalized": true, "count": {}, "type": "VEC4"}})",
+                             vertices);
+  }
+  const std::string colorView =
+      mesh.colors.empty() ? ""
+                          : fmt::format(R"(, {{"buffer": 0, "byteOffset": {}, "byteLength": {}}})", colorOffset,
+                                        mesh.colors.size());
+  const std::string alpha = mat.alphaMode == "OPAQUE"
+                                ? ""
+                                : fmt::format(R"("alphaMode": "{}", "alphaCutoff": {}, )", mat.alphaMode, mat.alphaCutoff);
   std::string json = fmt::format(
       R"({{
   "asset": {{"version": "2.0"}},
-  "extensionsUsed": ["KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume"],
+  "extensionsUsed": ["KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
+                     "KHR_materials_unlit", "KHR_materials_specular"],
   "scene": 0, "scenes": [{{"nodes": [0]}}], "nodes": [{{"mesh": 0, "name": "{0}"}}],
-  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "NORMAL": 1}}, "indices": 2, "material": 0}}]}}],
-  "materials": [{{"name": "{0}", "doubleSided": true, "emissiveFactor": {1},
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "NORMAL": 1{17}}}, "indices": 2, "material": 0}}]}}],
+  "materials": [{{"name": "{0}", "doubleSided": true, {20}"emissiveFactor": {1},
     "pbrMetallicRoughness": {{"baseColorFactor": [{2}, {3}, {4}, 1], "metallicFactor": {5}, "roughnessFactor": {6}}},
     "extensions": {{{7}}}}}],
   "buffers": [{{"byteLength": {8}, "uri": "data:application/octet-stream;base64,{9}"}}],
   "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": {10}}}, {{"buffer": 0, "byteOffset": {10}, "byteLength": {10}}},
-                  {{"buffer": 0, "byteOffset": {11}, "byteLength": {12}}}],
+                  {{"buffer": 0, "byteOffset": {11}, "byteLength": {12}}}{19}],
   "accessors": [
     {{"bufferView": 0, "componentType": 5126, "count": {13}, "type": "VEC3", "min": {14}, "max": {15}}},
     {{"bufferView": 1, "componentType": 5126, "count": {13}, "type": "VEC3"}},
-    {{"bufferView": 2, "componentType": 5125, "count": {16}, "type": "SCALAR"}}]
+    {{"bufferView": 2, "componentType": 5125, "count": {16}, "type": "SCALAR"}}{18}]{21}
 }})",
       name, vec3Json(emissiveFactor), mat.baseColor.x, mat.baseColor.y, mat.baseColor.z, mat.metallic, mat.roughness,
       extensions, buf.size(), base64(buf), vertexBytes, 2 * vertexBytes, mesh.indices.size() * 4, vertices,
-      vec3Json(lo), vec3Json(hi), mesh.indices.size());
+      vec3Json(lo), vec3Json(hi), mesh.indices.size(), colorAttribute, colorParts, colorView, alpha, textures);
   std::ofstream(dir / (name + ".gltf")) << json;
 }
 

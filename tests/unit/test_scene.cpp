@@ -242,6 +242,12 @@ TEST(Validate, RejectsMalformedPrimitives) {
   scene.meshes[0].primitives[0].uvs.pop_back();
   expectBadInput(scene, "uvs");
   scene = smallValidScene();
+  scene.meshes[0].primitives[0].colors.assign(2, glm::vec4(1.0f));
+  expectBadInput(scene, "colours");
+  scene = smallValidScene();
+  scene.materials[0].specularColorTexture.texture = 3;
+  expectBadInput(scene, "missing texture");
+  scene = smallValidScene();
   scene.meshes[0].primitives[0].uvs.clear(); // no uvs at all is fine
   EXPECT_TRUE(validate(scene).ok());
   scene.meshes[0].primitives[0].positions[2].z = std::numeric_limits<float>::infinity();

@@ -224,6 +224,8 @@ TEST(SceneFileMerge, AppendSceneRebasesEveryIndex) {
   Material m;
   m.baseColorTexture.texture = 0;
   m.emissiveTexture.texture = 0;
+  m.specularTexture.texture = 0;
+  m.specularColorTexture.texture = 0;
   b.materials.push_back(m);
   Mesh mesh;
   mesh.primitives.emplace_back();
@@ -249,6 +251,8 @@ TEST(SceneFileMerge, AppendSceneRebasesEveryIndex) {
   EXPECT_EQ(a.meshes[3].spheres[0].material, 2u);
   EXPECT_EQ(a.materials[2].baseColorTexture.texture, 1);
   EXPECT_EQ(a.materials[2].emissiveTexture.texture, 1);
+  EXPECT_EQ(a.materials[2].specularTexture.texture, 1);
+  EXPECT_EQ(a.materials[2].specularColorTexture.texture, 1);
   EXPECT_FALSE(a.materials[2].normalTexture.valid());
   EXPECT_EQ(a.textures[1].image, 2u);
   EXPECT_EQ(a.textures[1].sampler, 2u);
