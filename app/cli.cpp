@@ -54,6 +54,9 @@ int run(int argc, char** argv) {
   render->add_option("scene", ro.scene, "Scene: a .gltf/.glb, .obj or .json scene file, or builtin:NAME (cornell, whitted, spheres, instances[:N]); default builtin:whitted");
   render->add_option("-o,--output", ro.output, "Output image, .png (tonemapped) or .exr (linear HDR)");
   render->add_option("--hdr", ro.hdrOutput, "Also write the linear HDR image to this .exr");
+  render->add_flag("--exr-float", ro.exrFloat,
+                   "Write EXR files (-o, --hdr, --aov) with 32-bit float channels instead of half floats, whose "
+                   "largest value is 65504 (larger values are clamped there)");
   render->add_option("--size", size, "Image size WxH (default 1280x720)");
   render->add_option("--frames", ro.settings.frames, "Frames to accumulate for the static camera (default 16)")
       ->check(CLI::Range(1u, 100000u));

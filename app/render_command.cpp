@@ -166,16 +166,18 @@ int renderCommand(const RenderOptions& o) {
     if (!out) return fail(out.error());
     double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
-    Status written = lower(std::filesystem::path(o.output).extension().string()) == ".exr" ? writeExr(o.output, out->hdr)
-                                                                                         : writePng(o.output, out->ldr);
+    const ExrPixels exr = o.exrFloat ? ExrPixels::Float : ExrPixels::Half;
+    Status written = lower(std::filesystem::path(o.output).extension().string()) == ".exr"
+                         ? writeExr(o.output, out->hdr, exr)
+                         : writePng(o.output, out->ldr);
     if (!written) return fail(written.error());
     if (!o.hdrOutput.empty())
-      if (auto s = writeExr(o.hdrOutput, out->hdr); !s) return fail(s.error());
+      if (auto s = writeExr(o.hdrOutput, out->hdr, exr); !s) return fail(s.error());
     const std::filesystem::path outPath(o.output);
     for (const auto& [name, img] : out->aovs) {
       auto base = outPath.parent_path() / (outPath.stem().string() + "." + name);
       if (auto s = writeImage(base.string() + ".png", aovForDisplay(name, img)); !s) return fail(s.error());
-      if (auto s = writeExr(base.string() + ".exr", img); !s) return fail(s.error());
+      if (auto s = writeExr(base.string() + ".exr", img, exr); !s) return fail(s.error());
     }
     if (o.printTimings) {
       std::printf("%-20s %10s %10s %10s\n", "pass", "median ms", "min ms", "p95 ms");

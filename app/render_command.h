@@ -17,6 +17,7 @@ struct RenderOptions {
   bool validation = false;
   bool requireRt = false;  // --require-rt: exit MissingCapability instead of falling back to raster
   bool debugLabels = true;
+  bool exrFloat = false;  // --exr-float: 32-bit float EXR channels instead of half
   std::string device;
   render::RenderSettings settings;
 };
