@@ -225,8 +225,10 @@ Result<std::vector<int32_t>> convertImages(const tinygltf::Model& model, const s
                   src.uri.empty() ? src.name : src.uri);
       continue;
     }
-    const tinygltf::Material& m = model.materials[size_t(material)];
-    Result<ImageData> img = convertImage(src, i, file, m.name.empty() ? fmt::format("material{}", material) : m.name);
+    // The index came from the raw JSON (vetJson); tinygltf's array is the same one, checked anyway.
+    const bool named = size_t(material) < model.materials.size() && !model.materials[size_t(material)].name.empty();
+    const std::string name = named ? model.materials[size_t(material)].name : fmt::format("material{}", material);
+    Result<ImageData> img = convertImage(src, i, file, name);
     if (!img) return img.error();
     imageMap[i] = int32_t(scene.images.size());
     scene.images.push_back(std::move(*img));
