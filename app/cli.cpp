@@ -54,8 +54,13 @@ int run(int argc, char** argv) {
   render->add_option("scene", ro.scene, "Scene: a .gltf/.glb, .obj or .json scene file, or builtin:NAME (cornell, whitted, spheres, instances[:N]); default builtin:whitted");
   render->add_option("-o,--output", ro.output, "Output image, .png (tonemapped) or .exr (linear HDR)");
   render->add_option("--hdr", ro.hdrOutput, "Also write the linear HDR image to this .exr");
-  render->add_option("--size", size, "Image size WxH (default 1280x720)");
-  render->add_option("--frames", ro.settings.frames, "Frames to accumulate for the static camera (default 16)")
+  render->add_flag("--exr-float", ro.exrFloat,
+                   "Write EXR files (-o, --hdr, --aov) with 32-bit float channels instead of half floats, whose "
+                   "largest value is 65504 (larger values are clamped there)");
+  render->add_option("--size", size, "Image size WxH (default 1280x720; 640x360 on a CPU device such as lavapipe)");
+  render
+      ->add_option("--frames", ro.settings.frames,
+                   "Frames to accumulate for the static camera (default 16; 4 on a CPU device such as lavapipe)")
       ->check(CLI::Range(1u, 100000u));
   render->add_option("--seed", ro.settings.seed, "Random seed; the same seed gives the same image");
   uint32_t spp = 0;
@@ -242,6 +247,8 @@ int run(int argc, char** argv) {
     ro.settings.taa = taa == "on";
     ro.settings.culling = culling == "on";
     if (spp > 0) ro.settings.frames = spp;
+    ro.sizeGiven = render->count("--size") > 0;
+    ro.framesGiven = render->count("--frames") > 0 || spp > 0;
     if (Status m = parseMoves(moveInstance, ro.settings.moves); !m) {
       std::fprintf(stderr, "rayster: error: %s\n", m.error().message.c_str());
       return int(ExitCode::BadArguments);

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/progress.h"
 #include "core/image_io.h"
 #include "core/log.h"
 #include "rhi/context.h"
@@ -36,24 +37,49 @@ Status checkOutputPath(const std::string& path, const char* what, std::initializ
   return makeError(ExitCode::BadArguments, "{} '{}' must end in {}", what, path, *exts.begin());
 }
 
-nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, const render::RenderOutput& out) {
+// A CPU device (lavapipe) traces a few million rays per second: the GPU defaults (1280x720, 16
+// frames, every effect on) take about 9 minutes for the README's command on a 2-core machine;
+// these took 35 s there while two other builds ran (README's quick start).
+constexpr uint32_t kCpuWidth = 640, kCpuHeight = 360, kCpuFrames = 4;
+
+// On a CPU device, the size and frame count the user did not give become the CPU defaults, said in
+// one line. Explicit flags always win; other devices keep the defaults as they are.
+void applyCpuDefaults(const rhi::DeviceInfo& device, const RenderOptions& o, render::RenderSettings& s) {
+  if (device.type != VK_PHYSICAL_DEVICE_TYPE_CPU || (o.sizeGiven && o.framesGiven)) return;
+  std::string what, flags;
+  if (!o.sizeGiven) {
+    s.width = kCpuWidth;
+    s.height = kCpuHeight;
+    what = fmt::format("{}x{}", s.width, s.height);
+    flags = "--size";
+  }
+  if (!o.framesGiven) {
+    s.frames = kCpuFrames;
+    what += fmt::format("{}{} frames", what.empty() ? "" : ", ", s.frames);
+    flags += flags.empty() ? "--frames" : "/--frames";
+  }
+  log::info("CPU device {}: rendering {} by default ({} to override)", device.name, what, flags);
+}
+
+nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, const render::RenderSettings& s,
+                           const render::RenderOutput& out) {
   nlohmann::json j;
   j["device"] = ctx.info().name;
   j["driver"] = ctx.info().driverInfo;
   j["commit"] = RAYSTER_COMMIT;
   j["scene"] = o.scene;
-  j["width"] = o.settings.width;
-  j["height"] = o.settings.height;
-  j["frames"] = o.settings.frames;
-  j["seed"] = o.settings.seed;
+  j["width"] = s.width;
+  j["height"] = s.height;
+  j["frames"] = s.frames;
+  j["seed"] = s.seed;
   j["mode"] = render::modeName(out.modeUsed);
   j["primary"] = render::primaryName(out.primaryUsed);
-  j["tonemap"] = render::tonemapperName(o.settings.tonemap);
-  j["taa"] = o.settings.taa;
-  j["culling"] = o.settings.culling;
-  j["indirect_rate"] = render::indirectRateName(o.settings.indirectRate);
+  j["tonemap"] = render::tonemapperName(s.tonemap);
+  j["taa"] = s.taa;
+  j["culling"] = s.culling;
+  j["indirect_rate"] = render::indirectRateName(s.indirectRate);
   if (out.visibleDraws >= 0) j["draws"] = {{"visible", out.visibleDraws}, {"total", out.totalDraws}};
-  j["max_depth"] = o.settings.maxDepth;
+  j["max_depth"] = s.maxDepth;
   if (out.rasterGBufferMs >= 0) j["auto"] = {{"raster_gbuffer_ms", out.rasterGBufferMs}, {"traced_gbuffer_ms", out.tracedGBufferMs}};
   j["frame_gpu_ms_median"] = out.frameMedianMs;
   const auto& st = out.scene;
@@ -148,6 +174,7 @@ int renderCommand(const RenderOptions& o) {
     log::info("device {} has no ray-tracing pipelines: rendering with --mode raster", (*ctx)->info().name);
     settings.mode = render::Mode::Raster;
   }
+  applyCpuDefaults((*ctx)->info(), o, settings);
   log::debug("device: {} ({}), driver {}", (*ctx)->info().name, (*ctx)->info().typeName(), (*ctx)->info().driverInfo);
 
   int code = 0;
@@ -156,26 +183,23 @@ int renderCommand(const RenderOptions& o) {
     if (!renderer) return fail(renderer.error());
     auto t0 = std::chrono::steady_clock::now();
     settings.aovs = *aovs;
-    // Long renders show progress on a terminal; logs and pipes stay clean.
-    if (isatty(STDERR_FILENO) && settings.frames > 1)
-      settings.progress = [](uint32_t done, uint32_t total) {
-        std::fprintf(stderr, "\rrayster: frame %u/%u", done, total);
-        if (done == total) std::fprintf(stderr, "\r\033[K");
-      };
+    if (settings.frames > 1) settings.progress = frameProgress(isatty(STDERR_FILENO));
     auto out = (*renderer)->render(settings);
     if (!out) return fail(out.error());
     double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
-    Status written = lower(std::filesystem::path(o.output).extension().string()) == ".exr" ? writeExr(o.output, out->hdr)
-                                                                                         : writePng(o.output, out->ldr);
+    const ExrPixels exr = o.exrFloat ? ExrPixels::Float : ExrPixels::Half;
+    Status written = lower(std::filesystem::path(o.output).extension().string()) == ".exr"
+                         ? writeExr(o.output, out->hdr, exr)
+                         : writePng(o.output, out->ldr);
     if (!written) return fail(written.error());
     if (!o.hdrOutput.empty())
-      if (auto s = writeExr(o.hdrOutput, out->hdr); !s) return fail(s.error());
+      if (auto s = writeExr(o.hdrOutput, out->hdr, exr); !s) return fail(s.error());
     const std::filesystem::path outPath(o.output);
     for (const auto& [name, img] : out->aovs) {
       auto base = outPath.parent_path() / (outPath.stem().string() + "." + name);
       if (auto s = writeImage(base.string() + ".png", aovForDisplay(name, img)); !s) return fail(s.error());
-      if (auto s = writeExr(base.string() + ".exr", img); !s) return fail(s.error());
+      if (auto s = writeExr(base.string() + ".exr", img, exr); !s) return fail(s.error());
     }
     if (o.printTimings) {
       std::printf("%-20s %10s %10s %10s\n", "pass", "median ms", "min ms", "p95 ms");
@@ -185,7 +209,7 @@ int renderCommand(const RenderOptions& o) {
                     out->totalDraws, o.settings.culling ? "on" : "off");
       std::printf("%-20s %10.3f   (%s, %s, primary %s, %ux%u)\n", "frame (GPU)", out->frameMedianMs,
                   (*ctx)->info().name.c_str(), render::modeName(out->modeUsed), render::primaryName(out->primaryUsed),
-                  o.settings.width, o.settings.height);
+                  settings.width, settings.height);
       const auto& st = out->scene;
       std::printf("%-20s %10.1f MiB (transients %.1f, %.1f unaliased; histories/outputs %.1f) of %.1f MiB in use\n",
                   "frame resources", double(st.frameBytes) / (1 << 20), double(st.transientBytes) / (1 << 20),
@@ -197,13 +221,13 @@ int renderCommand(const RenderOptions& o) {
       std::string tmp = o.jsonOutput + ".tmp";
       {
         std::ofstream f(tmp);
-        f << timingsJson(**ctx, o, *out).dump(2) << "\n";
+        f << timingsJson(**ctx, o, settings, *out).dump(2) << "\n";
         if (!f) return fail(makeError(ExitCode::OutputFailed, "cannot write {}", o.jsonOutput));
       }
       std::filesystem::rename(tmp, o.jsonOutput);
     }
-    log::info("wrote {} ({}x{}, {} frames, primary {}, {:.0f} ms)", o.output, o.settings.width, o.settings.height,
-              o.settings.frames, render::primaryName(out->primaryUsed), wallMs);
+    log::info("wrote {} ({}x{}, {} frames, primary {}, {:.0f} ms)", o.output, settings.width, settings.height,
+              settings.frames, render::primaryName(out->primaryUsed), wallMs);
   }
   if ((*ctx)->validationEnabled() && (*ctx)->validationErrors() > 0) {
     std::fprintf(stderr, "rayster: error: %u Vulkan validation error(s)\n", (*ctx)->validationErrors());

@@ -17,6 +17,9 @@ struct RenderOptions {
   bool validation = false;
   bool requireRt = false;  // --require-rt: exit MissingCapability instead of falling back to raster
   bool debugLabels = true;
+  bool exrFloat = false;  // --exr-float: 32-bit float EXR channels instead of half
+  // Whether --size / --frames (or --spp) were given: on a CPU device the others get smaller defaults.
+  bool sizeGiven = false, framesGiven = false;
   std::string device;
   render::RenderSettings settings;
 };

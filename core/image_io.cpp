@@ -6,6 +6,7 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -25,6 +26,8 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 #include <tinyexr.h>
+
+#include "core/log.h"
 
 namespace fs = std::filesystem;
 
@@ -118,6 +121,30 @@ uint8_t quantize(float value) {
   return static_cast<uint8_t>(std::lround(value * 255.0f));
 }
 
+// The largest finite half float; anything larger (from 65520 up) rounds to inf when converted.
+constexpr float kHalfMax = 65504.0f;
+
+struct FiniteCounts {
+  size_t clamped = 0, nan = 0;
+};
+
+// Clamps every value to [-limit, limit] and replaces NaN by 0. Why 0: a NaN carries no value to
+// keep, and 0 is what the PNG encoder writes for it (encodeSrgb8), so the EXR and PNG of one render
+// agree; it also keeps the sums of `rayster compare` and of compositing filters finite.
+FiniteCounts makeFinite(ImageF& image, float limit) {
+  FiniteCounts counts;
+  for (float& v : image.rgba) {
+    if (std::isnan(v)) {
+      v = 0.0f;
+      ++counts.nan;
+    } else if (v > limit || v < -limit) {
+      v = std::clamp(v, -limit, limit);
+      ++counts.clamped;
+    }
+  }
+  return counts;
+}
+
 Result<ImageF> readHdr(const fs::path& path) {
   if (auto error = checkReadable(path)) return *error;
   int w = 0, h = 0, channels = 0;
@@ -163,12 +190,20 @@ Status writePng(const fs::path& path, const Image8& image) {
   });
 }
 
-Status writeExr(const fs::path& path, const ImageF& image) {
+Status writeExr(const fs::path& path, const ImageF& image, ExrPixels pixels) {
   if (image.empty()) return writeError(path, "image is empty");
+  const bool half = pixels == ExrPixels::Half;
+  ImageF finite = image;
+  const FiniteCounts changed = makeFinite(finite, half ? kHalfMax : FLT_MAX);
+  if (changed.clamped > 0)
+    log::warn("{}: {} value(s) beyond {} clamped to {}{}", path.string(), changed.clamped,
+              half ? "the half-float range" : "the float range", half ? "65504" : "the largest float",
+              half ? " (--exr-float writes 32-bit floats)" : "");
+  if (changed.nan > 0) log::warn("{}: {} NaN value(s) written as 0", path.string(), changed.nan);
   return writeAtomically(path, [&](const fs::path& temp, std::string& reason) {
     const char* err = nullptr;
-    const int rc = SaveEXR(image.rgba.data(), image.width, image.height, 4, /*save_as_fp16=*/1,
-                           temp.c_str(), &err);
+    const int rc =
+        SaveEXR(finite.rgba.data(), finite.width, finite.height, 4, /*save_as_fp16=*/half ? 1 : 0, temp.c_str(), &err);
     if (rc != TINYEXR_SUCCESS) {
       reason = err ? err : fmt::format("EXR encoder error {}", rc);
       if (err) FreeEXRErrorMessage(err);
@@ -248,10 +283,10 @@ Result<ImageF> readImageLinear(const fs::path& path) {
                    path.string(), ext);
 }
 
-Status writeImage(const fs::path& path, const ImageF& linear) {
+Status writeImage(const fs::path& path, const ImageF& linear, ExrPixels exrPixels) {
   const std::string ext = lowerExtension(path);
   if (ext == ".png") return writePng(path, encodeSrgb8(linear));
-  if (ext == ".exr") return writeExr(path, linear);
+  if (ext == ".exr") return writeExr(path, linear, exrPixels);
   if (ext == ".hdr") {
     if (linear.empty()) return writeError(path, "image is empty");
     return writeHdr(path, linear);

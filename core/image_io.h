@@ -17,7 +17,15 @@ float linearToSrgb(float linear);
 // Failures: ExitCode::OutputFailed, "cannot write <path>: <reason>". Creates the parent folder
 // if it is missing (users pass -o out/frame.png).
 Status writePng(const std::filesystem::path& path, const Image8& image);
-Status writeExr(const std::filesystem::path& path, const ImageF& image); // RGBA, half channels
+
+// EXR channel type. Half is the default (half the bytes; what compositors and viewers expect of a
+// beauty pass); Float keeps values past half's range, e.g. a path-traced view of the sun.
+enum class ExrPixels { Half, Float };
+
+// RGBA. Only finite values are written (DESIGN §10: no output holds inf or NaN): values beyond
+// the channel type's range are clamped to its largest finite value (65504 for half) and NaN
+// becomes 0, with one warning per file saying how many values changed.
+Status writeExr(const std::filesystem::path& path, const ImageF& image, ExrPixels pixels = ExrPixels::Half);
 
 // Any file (JSON reports): same atomic temp-and-rename and failure message as the images.
 Status writeFileAtomically(const std::filesystem::path& path, const std::string& contents);
@@ -29,7 +37,7 @@ Result<ImageF> readExr(const std::filesystem::path& path);
 // By extension (case-insensitive): .png (sRGB <-> linear, alpha kept linear), .exr, .hdr.
 // Unknown extension: ExitCode::BadArguments.
 Result<ImageF> readImageLinear(const std::filesystem::path& path);
-Status writeImage(const std::filesystem::path& path, const ImageF& linear);
+Status writeImage(const std::filesystem::path& path, const ImageF& linear, ExrPixels exrPixels = ExrPixels::Half);
 
 // Linear float -> 8-bit sRGB with clamping; NaN becomes 0 so one bad pixel cannot poison a PNG.
 Image8 encodeSrgb8(const ImageF& linear);

@@ -216,6 +216,33 @@ bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigne
   return false;
 }
 
+// Per image, the first material that shows it through one of the texture slots Rayster reads.
+// Broken references are left to the material conversion, which warns about them.
+std::vector<int> imageMaterials(const Json& root) {
+  const Json* images = member(root, "images");
+  std::vector<int> out(images && images->is_array() ? images->size() : 0, -1);
+  const Json* textures = member(root, "textures");
+  const Json* materials = member(root, "materials");
+  if (!textures || !textures->is_array() || !materials || !materials->is_array()) return out;
+  auto mark = [&](const Json* slot, size_t material) {
+    const Json* index = slot ? member(*slot, "index") : nullptr;
+    if (!index || !index->is_number_unsigned() || index->get<uint64_t>() >= textures->size()) return;
+    const Json* source = member((*textures)[index->get<size_t>()], "source");
+    if (!source || !source->is_number_unsigned() || source->get<uint64_t>() >= out.size()) return;
+    int& first = out[source->get<size_t>()];
+    if (first < 0) first = int(material);
+  };
+  for (size_t m = 0; m < materials->size(); ++m) {
+    const Json& material = (*materials)[m];
+    if (const Json* pbr = member(material, "pbrMetallicRoughness")) {
+      mark(member(*pbr, "baseColorTexture"), m);
+      mark(member(*pbr, "metallicRoughnessTexture"), m);
+    }
+    for (const char* slot : {"normalTexture", "occlusionTexture", "emissiveTexture"}) mark(member(material, slot), m);
+  }
+  return out;
+}
+
 } // namespace
 
 std::string oneLine(std::string_view text) {
@@ -251,7 +278,7 @@ Result<std::string_view> glbJsonChunk(const std::string& file, const std::vector
   return std::string_view(reinterpret_cast<const char*>(p) + 20, size_t(jsonLength));
 }
 
-Status vetJson(const std::string& file, std::string_view text) {
+Result<VettedJson> vetJson(const std::string& file, std::string_view text) {
   if (jsonDepth(text) > kMaxJsonDepth) return bad(file, "JSON nests deeper than {} levels", kMaxJsonDepth);
   Json root;
   try {
@@ -277,7 +304,7 @@ Status vetJson(const std::string& file, std::string_view text) {
         RAYSTER_TRY(checkUri(file, fmt::format("image {}", i), uri->get<std::string>()));
       if (const Json* view = member((*images)[i], "bufferView")) RAYSTER_TRY(checkImageView(file, root, i, *view));
     }
-  return okStatus();
+  return VettedJson{imageMaterials(root)};
 }
 
 tinygltf::FsCallbacks makeConfinedFsCallbacks(ConfinedFs* fs) {

@@ -30,10 +30,17 @@ std::string oneLine(std::string_view text);
 // does (it lets the BIN chunk run 8 bytes past the end) and returns the JSON chunk.
 Result<std::string_view> glbJsonChunk(const std::string& file, const std::vector<uint8_t>& bytes);
 
+// What the loader learns from the raw JSON before tinygltf reads any image.
+struct VettedJson {
+  // Per glTF image: the first material that shows it through a texture, -1 for none. Only images
+  // a material shows are decoded and required (gltf_materials.cpp says why).
+  std::vector<int> imageMaterial;
+};
+
 // Parses the JSON on its own first so that nothing tinygltf does can be steered by the file:
 // bounded nesting (tinygltf converts extras recursively), URIs confined to the folder, data URIs
 // with valid base64, image buffer views inside their buffers, and extensionsRequired supported.
-Status vetJson(const std::string& file, std::string_view json);
+Result<VettedJson> vetJson(const std::string& file, std::string_view json);
 
 // A second line of defence behind vetJson: tinygltf's file access, confined to baseDir. Paths
 // outside it are refused and remembered in `violation`.
@@ -43,9 +50,12 @@ struct ConfinedFs {
 };
 tinygltf::FsCallbacks makeConfinedFsCallbacks(ConfinedFs* fs);
 
-// tinygltf image loader: refuses absurd dimensions before decoding, decodes to RGBA8.
+// tinygltf image loader: decodes to RGBA8 the images a material shows (imageMaterial >= 0),
+// refusing absurd dimensions before decoding; the others are passed over undecoded.
 struct ImageDecodeState {
-  std::string error; // the first failure, without the file name
+  std::vector<int> imageMaterial;  // from VettedJson
+  std::vector<bool> reached;       // per image: its bytes reached the loader (it is not missing)
+  std::string error;               // the first failure, without the file name
 };
 bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::string* warn, int reqWidth,
                  int reqHeight, const unsigned char* bytes, int size, void* user);
@@ -70,7 +80,8 @@ Result<Mesh> convertMesh(MeshBuilder& builder, int meshIndex);
 
 // ---- gltf_materials.cpp: images, samplers, textures and materials, in glTF order ----
 
-Status convertMaterials(const tinygltf::Model& model, const std::string& file, Scene& scene);
+Status convertMaterials(const tinygltf::Model& model, const std::string& file, const ImageDecodeState& images,
+                        Scene& scene);
 
 // ---- gltf_animations.cpp ----
 

@@ -53,7 +53,8 @@ unsigned glbLength(const std::vector<uint8_t>& bytes) {
   return length;
 }
 
-Result<tinygltf::Model> parse(const fs::path& path, const std::string& file) {
+// Reads and parses the file; `images` learns which images a material shows and which were found.
+Result<tinygltf::Model> parse(const fs::path& path, const std::string& file, ImageDecodeState& images) {
   Result<std::vector<uint8_t>> bytes = readFile(path, file);
   if (!bytes) return bytes.error();
   const bool binary = bytes->size() >= 4 && std::memcmp(bytes->data(), "glTF", 4) == 0;
@@ -63,12 +64,14 @@ Result<tinygltf::Model> parse(const fs::path& path, const std::string& file) {
     if (!chunk) return chunk.error();
     json = *chunk;
   }
-  RAYSTER_TRY(vetJson(file, json));
+  Result<VettedJson> vetted = vetJson(file, json);
+  if (!vetted) return vetted.error();
+  images.imageMaterial = vetted->imageMaterial;
+  images.reached.assign(images.imageMaterial.size(), false);
 
   std::error_code ec;
   fs::path dir = fs::absolute(path, ec).parent_path();
   ConfinedFs confined{dir.string(), {}};
-  ImageDecodeState images;
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks(makeConfinedFsCallbacks(&confined));
   loader.SetImageLoader(&decodeImage, &images);
@@ -218,6 +221,42 @@ Result<std::vector<int>> rootNodes(const tinygltf::Model& model, const std::stri
   return roots;
 }
 
+// meshMap[glTF mesh]: its index in Scene::meshes, or one of these.
+constexpr int kMeshUnconverted = -1, kMeshEmpty = -2;
+
+// Node `index` (Scene::nodes[self]) draws its mesh, converted on first use. A mesh with nothing to
+// draw (every primitive skipped) adds no mesh and no instance, so no empty BLAS; its nodes stay in
+// the hierarchy for their children and animations.
+Status addMeshInstance(MeshBuilder& meshes, std::vector<int>& meshMap, int index, int32_t self,
+                       const glm::mat4& world) {
+  const tinygltf::Node& node = meshes.model.nodes[size_t(index)];
+  const std::string& file = meshes.file;
+  Scene& scene = meshes.scene;
+  if (size_t(node.mesh) >= meshes.model.meshes.size())
+    return bad(file, "node {} uses mesh {}, which does not exist", index, node.mesh);
+  int& mapped = meshMap[size_t(node.mesh)];
+  if (mapped == kMeshUnconverted) {
+    Result<Mesh> mesh = convertMesh(meshes, node.mesh);
+    if (!mesh) return mesh.error();
+    if (mesh->primitives.empty()) {
+      log::warn("{}: mesh '{}' has nothing to draw; node '{}' and any other node using it draw nothing", file,
+                mesh->name, scene.nodes[size_t(self)].name);
+      mapped = kMeshEmpty;
+    } else {
+      mapped = int(scene.meshes.size());
+      scene.meshes.push_back(std::move(*mesh));
+    }
+  }
+  if (mapped < 0) return okStatus();
+  Instance instance;
+  instance.name = node.name.empty() ? fmt::format("node{}", index) : node.name;
+  instance.mesh = uint32_t(mapped);
+  instance.worldFromObject = world;
+  instance.node = self;  // reset by convertAnimations() unless the node moves
+  scene.instances.push_back(instance);
+  return okStatus();
+}
+
 // Walks the default scene's hierarchy into Scene::nodes (parents first), instances, cameras and
 // lights. sceneNodeOf[glTF node] is its index in Scene::nodes, -1 where it is not reached.
 Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene& scene,
@@ -225,7 +264,7 @@ Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene
   Result<std::vector<int>> roots = rootNodes(model, file);
   if (!roots) return roots.error();
   MeshBuilder meshes{model, file, scene, std::nullopt};
-  std::vector<int> meshMap(model.meshes.size(), -1);
+  std::vector<int> meshMap(model.meshes.size(), kMeshUnconverted);
   sceneNodeOf.assign(model.nodes.size(), -1);
   bool warnedSkin = false;
   // Explicit stack of (glTF node, parent in Scene::nodes): hierarchies can be deep, and a hostile
@@ -249,28 +288,10 @@ Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene
     sceneNodeOf[size_t(index)] = self;
     scene.nodes.push_back(std::move(*converted));
 
-    if (node.mesh >= 0) {
-      if (size_t(node.mesh) >= model.meshes.size())
-        return bad(file, "node {} uses mesh {}, which does not exist", index, node.mesh);
-      if (meshMap[size_t(node.mesh)] < 0) {
-        Result<Mesh> mesh = convertMesh(meshes, node.mesh);
-        if (!mesh) return mesh.error();
-        meshMap[size_t(node.mesh)] = int(scene.meshes.size());
-        scene.meshes.push_back(std::move(*mesh));
-      }
-      if (node.skin >= 0 && !warnedSkin) {
-        log::warn("{}: skins are not supported; skinned meshes are drawn in their bind pose", file);
-        warnedSkin = true;
-      }
-      const uint32_t meshIndex = uint32_t(meshMap[size_t(node.mesh)]);
-      if (!scene.meshes[meshIndex].primitives.empty()) {
-        Instance instance;
-        instance.name = node.name.empty() ? fmt::format("node{}", index) : node.name;
-        instance.mesh = meshIndex;
-        instance.worldFromObject = world;
-        instance.node = self; // reset by convertAnimations() unless the node moves
-        scene.instances.push_back(instance);
-      }
+    if (node.mesh >= 0) RAYSTER_TRY(addMeshInstance(meshes, meshMap, index, self, world));
+    if (node.mesh >= 0 && node.skin >= 0 && !warnedSkin) {
+      log::warn("{}: skins are not supported; skinned meshes are drawn in their bind pose", file);
+      warnedSkin = true;
     }
     if (node.camera >= 0) RAYSTER_TRY(addCamera(model, node, world, scene, file));
     if (int light = nodeLight(node); light != -1) RAYSTER_TRY(addLight(model, node, light, world, scene, file));
@@ -285,11 +306,12 @@ Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene
 
 Result<Scene> loadGltf(const fs::path& path) {
   const std::string file = path.filename().string();
-  Result<tinygltf::Model> model = gltf::parse(path, file);
+  gltf::ImageDecodeState images;
+  Result<tinygltf::Model> model = gltf::parse(path, file, images);
   if (!model) return model.error();
   Scene scene;
   scene.name = path.stem().string();
-  RAYSTER_TRY(gltf::convertMaterials(*model, file, scene));
+  RAYSTER_TRY(gltf::convertMaterials(*model, file, images, scene));
   std::vector<int> sceneNodeOf;
   RAYSTER_TRY(gltf::convertNodes(*model, file, scene, sceneNodeOf));
   RAYSTER_TRY(gltf::convertAnimations(*model, file, sceneNodeOf, scene));

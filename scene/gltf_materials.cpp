@@ -170,13 +170,20 @@ Material convertMaterial(const MaterialContext& ctx, const tinygltf::Material& s
   return m;
 }
 
-Result<ImageData> convertImage(const tinygltf::Image& src, size_t index, const std::string& file) {
+// An image a material shows. Missing, it refuses the file: glTF viewers differ (some draw the
+// material untextured), but Rayster's images are compared against references and goldens, where a
+// render without its base colour or normal map is a wrong result that looks like a right one. The
+// one-line cause names the image and the material, so the fix (supply it, or drop it from the
+// material) is quick.
+Result<ImageData> convertImage(const tinygltf::Image& src, size_t index, const std::string& file,
+                               const std::string& material) {
   ImageData img;
   img.name = !src.name.empty() ? src.name : !src.uri.empty() ? src.uri : fmt::format("image{}", index);
   if (src.image.empty()) {
-    // tinygltf only warns when an external image is missing; for us it is a broken file.
-    if (!src.uri.empty()) return bad(file, "image {} '{}' is missing or unreadable", index, src.uri);
-    return bad(file, "image {} has no data", index);
+    // tinygltf only warns when an external image is missing.
+    if (!src.uri.empty())
+      return bad(file, "image {} '{}' is missing or unreadable; material '{}' uses it", index, src.uri, material);
+    return bad(file, "image {} has no data; material '{}' uses it", index, material);
   }
   // decodeImage produced RGBA8, but a file could still arrive here through another path: check.
   if (src.width <= 0 || src.height <= 0 || src.component != 4 || src.bits != 8 ||
@@ -199,6 +206,10 @@ double numberOr(const tinygltf::Value& object, const char* key, double fallback)
 bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::string*, int, int,
                  const unsigned char* bytes, int size, void* user) {
   auto* state = static_cast<ImageDecodeState*>(user);
+  const size_t index = size_t(imageIndex);
+  if (index < state->reached.size()) state->reached[index] = true;
+  // Images no material shows are not decoded: nothing needs them, so a broken one costs nothing.
+  if (index >= state->imageMaterial.size() || state->imageMaterial[index] < 0) return true;
   auto fail = [&](std::string message) {
     if (state->error.empty()) state->error = message;
     if (err) *err += message + "\n";
@@ -226,12 +237,35 @@ bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::
   return true;
 }
 
-Status convertMaterials(const tinygltf::Model& model, const std::string& file, Scene& scene) {
+// The images materials show, into scene.images; imageMap[glTF image] is the scene image, or -1
+// for one no material shows (skipped, with a warning when it is missing: it may be a mistake).
+Result<std::vector<int32_t>> convertImages(const tinygltf::Model& model, const std::string& file,
+                                           const ImageDecodeState& images, Scene& scene) {
+  std::vector<int32_t> imageMap(model.images.size(), -1);
   for (size_t i = 0; i < model.images.size(); ++i) {
-    Result<ImageData> img = convertImage(model.images[i], i, file);
+    const tinygltf::Image& src = model.images[i];
+    const int material = i < images.imageMaterial.size() ? images.imageMaterial[i] : -1;
+    if (material < 0) {
+      if (i < images.reached.size() && !images.reached[i])
+        log::warn("{}: image {} '{}' is missing or unreadable; no material uses it, so it is skipped", file, i,
+                  src.uri.empty() ? src.name : src.uri);
+      continue;
+    }
+    // The index came from the raw JSON (vetJson); tinygltf's array is the same one, checked anyway.
+    const bool named = size_t(material) < model.materials.size() && !model.materials[size_t(material)].name.empty();
+    const std::string name = named ? model.materials[size_t(material)].name : fmt::format("material{}", material);
+    Result<ImageData> img = convertImage(src, i, file, name);
     if (!img) return img.error();
+    imageMap[i] = int32_t(scene.images.size());
     scene.images.push_back(std::move(*img));
   }
+  return imageMap;
+}
+
+Status convertMaterials(const tinygltf::Model& model, const std::string& file, const ImageDecodeState& images,
+                        Scene& scene) {
+  Result<std::vector<int32_t>> imageMap = convertImages(model, file, images, scene);
+  if (!imageMap) return imageMap.error();
   for (const tinygltf::Sampler& s : model.samplers) scene.samplers.push_back(convertSampler(s));
 
   std::optional<uint32_t> defaultSampler;
@@ -239,12 +273,13 @@ Status convertMaterials(const tinygltf::Model& model, const std::string& file, S
   for (size_t i = 0; i < model.textures.size(); ++i) {
     const tinygltf::Texture& src = model.textures[i];
     // A texture whose only source is an extension (KTX2, WebP) has no image we can read.
-    if (src.source < 0 || size_t(src.source) >= scene.images.size()) {
+    if (src.source < 0 || size_t(src.source) >= imageMap->size()) {
       log::warn("{}: texture {} has no PNG or JPEG image; ignored", file, i);
       continue;
     }
+    if ((*imageMap)[size_t(src.source)] < 0) continue;  // no material shows it, so nothing uses this texture
     Texture t;
-    t.image = uint32_t(src.source);
+    t.image = uint32_t((*imageMap)[size_t(src.source)]);
     if (src.sampler >= 0 && size_t(src.sampler) < model.samplers.size()) {
       t.sampler = uint32_t(src.sampler);
     } else {

@@ -116,9 +116,7 @@ Result<Primitive> convertPrimitive(MeshBuilder& builder, const tinygltf::Mesh& m
     log::warn("{}: {} primitive {}: morph targets are ignored", file, label, primIndex);
 
   Primitive prim;
-  const int position = attribute(src, "POSITION");
-  if (position < 0) return bad(file, "{} primitive {} has no POSITION attribute", label, primIndex);
-  auto positions = readVec3(model, position, file);
+  auto positions = readVec3(model, attribute(src, "POSITION"), file);  // convertMesh checked it is there
   if (!positions) return positions.error();
   prim.positions = std::move(*positions);
   const size_t vertexCount = prim.positions.size();
@@ -204,6 +202,12 @@ Result<Mesh> convertMesh(MeshBuilder& builder, int meshIndex) {
   Mesh mesh;
   mesh.name = src.name.empty() ? fmt::format("mesh{}", meshIndex) : src.name;
   for (size_t p = 0; p < src.primitives.size(); ++p) {
+    // POSITION is optional in glTF 2.0; without it "client implementations SHOULD skip primitive's
+    // rendering" (the spec), so the file is valid and only this primitive is left out.
+    if (attribute(src.primitives[p], "POSITION") < 0) {
+      log::warn("{}: {} primitive {} has no POSITION attribute; skipped", builder.file, meshLabel(src, meshIndex), p);
+      continue;
+    }
     Result<Primitive> prim = convertPrimitive(builder, src, meshIndex, p);
     if (!prim) return prim.error();
     // A primitive without triangles adds nothing to draw and would be an empty BLAS geometry.

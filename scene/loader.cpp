@@ -38,6 +38,13 @@ std::string lowerExtension(const fs::path& path) {
   return ext;
 }
 
+bool hasGeometry(const Scene& scene) {
+  return std::any_of(scene.instances.begin(), scene.instances.end(), [&](const Instance& instance) {
+    const Mesh& mesh = scene.meshes[instance.mesh];  // validate() checked the index
+    return !mesh.primitives.empty() || !mesh.spheres.empty();
+  });
+}
+
 bool isBuiltinName(const std::string& name) {
   const std::vector<std::string> names = builtinSceneNames();
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -96,6 +103,10 @@ Result<Scene> loadScene(const std::string& nameOrPath) {
   if (scene.name.empty()) scene.name = path.stem().string();
   applyDefaults(scene);
   RAYSTER_TRY(validate(scene));
+  // Said here, before any device starts, and after the loaders' warnings of what they skipped.
+  if (!hasGeometry(scene))
+    return makeError(ExitCode::BadInput, "cannot render '{}': nothing to render (no instance has triangles or spheres)",
+                     nameOrPath);
   return scene;
 }
 

@@ -7,13 +7,16 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 
-# Lavapipe only has ray tracing in the Mesa from bookworm-backports.
-if ! grep -rqs 'bookworm-backports' /etc/apt/sources.list /etc/apt/sources.list.d/; then
-  echo "setup: adding the bookworm-backports suite"
-  echo 'deb http://deb.debian.org/debian bookworm-backports main' |
-    $SUDO tee /etc/apt/sources.list.d/rayster-backports.list >/dev/null
-  NEED_UPDATE=1
-fi
+# Lavapipe only has ray tracing in the Mesa from bookworm-backports. The entry is derived from the
+# machine's own bookworm entry (same mirror, components and key), so no host is named here.
+# shellcheck source=scripts/apt-backports.sh
+. "$(dirname "$0")/apt-backports.sh"
+status=0
+add_backports || status=$?
+case "$status" in
+  0) NEED_UPDATE=1 ;;
+  2) exit 1 ;;  # backports_entry said what to add
+esac
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git

@@ -21,6 +21,7 @@ void addViewCommand(CLI::App& cli, ViewCommand& v) {
   view->add_option("--frames", o.frames, "Close after this many frames (scripted runs and tests)");
   view->add_option("--screenshot", o.screenshot,
                    "After the last frame write the presented window image (.png, with the panel unless --hide-ui)");
+  view->add_flag("--exr-float", o.exrFloat, "Write screenshot EXRs with 32-bit float channels instead of half floats");
   view->add_option("--resize-at", v.resizeAt, "Resize the window at frame F to WxH (F:WxH, repeatable)");
   view->add_flag("--hide-ui", o.hideUi, "Start with the panel hidden (Tab toggles it)");
   view->add_flag("--vsync{true},--no-vsync{false}", o.vsync, "Present with vsync (default) or without");

@@ -313,10 +313,12 @@ int runViewer(const ViewOptions& o) {
         const bool exr = std::filesystem::path(path).extension() == ".exr";
         render::RenderOutput out = renderer->endRun();
         restart = true;
-        Status written = exr ? writeExr(path, out.hdr) : writePng(path, captured);
+        const ExrPixels pixels = o.exrFloat ? ExrPixels::Float : ExrPixels::Half;
+        Status written = exr ? writeExr(path, out.hdr, pixels) : writePng(path, captured);
         if (!written) return fail(written.error());
         // A screenshot key press writes both: the window as shown, and the linear frame.
-        if (!exr && st.screenshot) written = writeExr(std::filesystem::path(path).replace_extension(".exr"), out.hdr);
+        if (!exr && st.screenshot)
+          written = writeExr(std::filesystem::path(path).replace_extension(".exr"), out.hdr, pixels);
         st.message = written ? "wrote " + path : written.error().message;
         log::info("wrote {} ({}x{}, frame {})", path, captured.width, captured.height, frame + 1);
         st.screenshot = false;

@@ -25,6 +25,7 @@ struct ViewOptions {
   std::string debugView;  // --debug-view NAME: start showing this stage (render::aovNames())
   bool hideUi = false;
   bool vsync = true;
+  bool exrFloat = false;  // --exr-float: screenshot EXRs with 32-bit float channels
   bool validation = false;
   bool debugLabels = true;
   std::string device;

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -22,8 +23,9 @@ struct RunResult {
   std::string output;  // stdout and stderr
 };
 
-inline RunResult runRayster(const std::string& args, const std::string& env = "") {
-  std::string cmd = "env XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} RAYSTER_VALIDATION=1 " + env + " " +
+// `prefix` runs the command (e.g. under xvfb-run); stdout and stderr are one pipe.
+inline RunResult runRaysterWith(const std::string& prefix, const std::string& args, const std::string& env) {
+  std::string cmd = prefix + "env XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} RAYSTER_VALIDATION=1 " + env + " " +
                     std::string(RAYSTER_BINARY) + " " + args + " 2>&1";
   RunResult r;
   FILE* pipe = popen(cmd.c_str(), "r");
@@ -33,6 +35,17 @@ inline RunResult runRayster(const std::string& args, const std::string& env = ""
   int status = pclose(pipe);
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+inline RunResult runRayster(const std::string& args, const std::string& env = "") {
+  return runRaysterWith("", args, env);
+}
+
+// The viewer needs a display: Xvfb, with a 24-bit screen (its default 8-bit visual has no Vulkan
+// surface format).
+inline bool haveXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+inline RunResult runUnderXvfb(const std::string& args, const std::string& env = "") {
+  return runRaysterWith("xvfb-run -a -s '-screen 0 1024x768x24' ", args, env);
 }
 
 // A fresh folder per test under the system temp directory.

@@ -18,23 +18,6 @@ namespace rayster::test {
 namespace {
 
 constexpr int kWidth = 160, kHeight = 120;
-// The screen must be 24-bit: Xvfb's default 8-bit visual has no Vulkan surface format.
-const std::string kXvfb = "xvfb-run -a -s '-screen 0 1024x768x24' ";
-
-bool haveXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
-
-RunResult runUnderXvfb(const std::string& args, const std::string& env = "") {
-  std::string cmd = kXvfb + "env XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} RAYSTER_VALIDATION=1 " + env + " " +
-                    std::string(RAYSTER_BINARY) + " " + args + " 2>&1";
-  RunResult r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, pipe)) r.output.append(buf, n);
-  int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 TEST(Viewer, ScreenshotMatchesHeadlessRender) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (scripts/setup.sh installs xvfb and xauth)";

@@ -26,6 +26,15 @@ std::vector<uint8_t> pngHeader(uint32_t width, uint32_t height) {
   return png;
 }
 
+// Image 0 as the base colour of the quad's material: only images a material shows are decoded
+// and required (test_gltf_skip.cpp has the others).
+void showImage(Doc& d, const Json& image) {
+  d.j["images"] = Json::array({image});
+  d.j["textures"] = Json::array({{{"source", 0}}});
+  d.j["materials"] = Json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+  primitive(d)["material"] = 0;
+}
+
 Result<scene::Scene> loadWithBufferUri(const std::string& uri) {
   TempDir dir;
   Doc d = quadDoc();
@@ -147,7 +156,7 @@ TEST(GltfReject, MissingExternalFiles) {
   expectRefused(loadWithBufferUri("missing.bin"), "missing.bin");
   TempDir dir;
   Doc d = quadDoc();
-  d.j["images"] = Json::array({{{"uri", "nowhere.png"}}});
+  showImage(d, {{"uri", "nowhere.png"}});
   expectRefused(loadBytes(dir, d.gltf()), "nowhere.png");
 }
 
@@ -155,12 +164,12 @@ TEST(GltfReject, AbsurdImageDimensions) {
   TempDir dir;
   for (auto [w, h] : {std::pair<uint32_t, uint32_t>{100000, 100000}, {16385, 16}, {16384, 16384 + 1}}) {
     Doc d = quadDoc();
-    d.j["images"] = Json::array({{{"uri", "data:image/png;base64," + base64(pngHeader(w, h))}}});
+    showImage(d, {{"uri", "data:image/png;base64," + base64(pngHeader(w, h))}});
     expectRefused(loadBytes(dir, d.gltf()), "image 0");
   }
   // Below the limits, the same header fails only for its missing pixels.
   Doc d = quadDoc();
-  d.j["images"] = Json::array({{{"uri", "data:image/png;base64," + base64(pngHeader(16, 16))}}});
+  showImage(d, {{"uri", "data:image/png;base64," + base64(pngHeader(16, 16))}});
   expectRefused(loadBytes(dir, d.gltf()), "cannot be decoded");
 }
 
