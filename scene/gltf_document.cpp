@@ -239,6 +239,10 @@ std::vector<int> imageMaterials(const Json& root) {
       mark(member(*pbr, "metallicRoughnessTexture"), m);
     }
     for (const char* slot : {"normalTexture", "occlusionTexture", "emissiveTexture"}) mark(member(material, slot), m);
+    // The extensions' texture slots that gltf_materials.cpp reads: keep the two lists in step.
+    const Json* extensions = member(material, "extensions");
+    if (const Json* specular = extensions ? member(*extensions, "KHR_materials_specular") : nullptr)
+      for (const char* slot : {"specularTexture", "specularColorTexture"}) mark(member(*specular, slot), m);
   }
   return out;
 }
