@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "app/bench_report.h"
+#include "app/build_info.h"
 #include "core/log.h"
 #include "render/renderer.h"
 #include "rhi/context.h"
@@ -230,7 +231,7 @@ int parentCommand(const BenchOptions& o) {
   if (ec) return fail(makeError(ExitCode::OutputFailed, "cannot create {}: {}", work.string(), ec.message()));
 
   json results = {{"schema", "rayster-bench/1"}, {"plan", plan->name}, {"date", isoDate()},
-                  {"commit", RAYSTER_COMMIT},    {"device", ""},       {"driver", ""}};
+                  {"commit", buildCommit()},    {"device", ""},       {"driver", ""}};
   char host[256] = {};
   gethostname(host, sizeof host - 1);
   results["host"] = host;

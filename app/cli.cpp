@@ -7,8 +7,10 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "app/bench_command.h"
+#include "app/build_info.h"
 #include "app/commands.h"
 #include "app/compare_command.h"
 #include "app/render_command.h"
@@ -53,6 +55,8 @@ void addGlobalOptions(CLI::App& cli, GlobalOptions& g) {
   cli.add_flag("--validation", g.validation, "Enable Vulkan validation (also RAYSTER_VALIDATION=1); any error fails the run");
   cli.add_option("--device", g.device, "Use the device whose name contains this text");
   cli.add_flag("--no-debug-labels", g.noLabels, "Do not emit debug labels and object names (on by default)");
+  cli.set_version_flag("--version", fmt::format("rayster {} (commit {})", buildVersion(), buildCommit()),
+                       "Print the version and the commit this binary was built from");
 }
 
 // `rayster render`: what CLI11 fills directly (options) and the words converted after parsing.
@@ -273,7 +277,7 @@ CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& co) {
   return compare;
 }
 
-// Parses the command line. Returns the exit code to end with after --help or a parse
+// Parses the command line. Returns the exit code to end with after --help, --version or a parse
 // error (reported in one line), nothing when a subcommand should run.
 std::optional<int> parse(CLI::App& cli, int argc, char** argv) {
   try {
@@ -281,6 +285,8 @@ std::optional<int> parse(CLI::App& cli, int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return cli.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return cli.exit(e);
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "rayster: error: %s (see rayster --help)\n", e.what());

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/build_info.h"
 #include "app/progress.h"
 #include "core/image_io.h"
 #include "core/log.h"
@@ -66,7 +67,7 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   nlohmann::json j;
   j["device"] = ctx.info().name;
   j["driver"] = ctx.info().driverInfo;
-  j["commit"] = RAYSTER_COMMIT;
+  j["commit"] = buildCommit();
   j["scene"] = o.scene;
   j["width"] = s.width;
   j["height"] = s.height;
@@ -240,6 +241,7 @@ int infoCommand() {
   auto devices = rhi::Context::listDevices();
   if (!devices) return fail(devices.error());
   if (devices->empty()) return fail(makeError(ExitCode::NoDevice, "no Vulkan device found"));
+  std::printf("rayster %s (commit %s)\n", buildVersion(), buildCommit());
   for (const rhi::DeviceInfo& d : *devices) {
     const rhi::Capabilities& c = d.caps;
     std::printf("%s (%s)\n", d.name.c_str(), d.typeName());
