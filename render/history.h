@@ -1,6 +1,6 @@
 #pragma once
 // A temporal history: two images written alternately, so no dispatch reads and writes one image
-// (TECHNIQUES.md §9: never update a history in place). Owned by the renderer across frames and
+// (docs/architecture.md §2.5: never update a history in place). Owned by the renderer across frames and
 // imported into each frame's graph.
 #include <string>
 

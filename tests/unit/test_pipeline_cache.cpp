@@ -1,4 +1,4 @@
-// The on-disk pipeline cache (rhi/pipeline_cache.h, TECHNIQUES.md §19): header checks on synthetic
+// The on-disk pipeline cache (rhi/pipeline_cache.h, docs/techniques.md §25): header checks on synthetic
 // data, and on the device (lavapipe) a written cache that the next context loads, and damaged or
 // foreign files that are ignored without a crash and replaced.
 #include <algorithm>
