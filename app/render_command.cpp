@@ -94,7 +94,7 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
                       {"history_bytes", st.historyBytes}};
   for (const auto& p : out.passes)
     j["passes"].push_back({{"name", p.name}, {"median_ms", p.medianMs}, {"min_ms", p.minMs}, {"p95_ms", p.p95Ms},
-                           {"frames", p.samples}, {"rays", p.rays}});
+                           {"frames", p.samples}, {"rays", p.info.rays}});
   return j;
 }
 

@@ -34,6 +34,17 @@ BufferHandle PassBuilder::write(BufferHandle buffer, Use use) {
 }
 
 void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
+void PassBuilder::kind(PassKind kind) { graph_.passes_[pass_].info.kind = kind; }
+void PassBuilder::twinOf(std::string pass) {
+  PassInfo& info = graph_.passes_[pass_].info;
+  info.kind = PassKind::Twin;
+  info.twinOf = std::move(pass);
+}
+void PassBuilder::rays(uint64_t launched, bool exact) {
+  PassInfo& info = graph_.passes_[pass_].info;
+  info.rays = launched;
+  info.raysExact = exact;
+}
 
 const rhi::Image& PassContext::image(ImageHandle h) const {
   // Transients alias by lifetime: a pass may only touch images it declared (read or write).
@@ -63,7 +74,7 @@ BufferHandle RenderGraph::importBuffer(std::string name, const rhi::Buffer* buff
 }
 
 void RenderGraph::addPass(std::string name, const std::function<void(PassBuilder&)>& setup, Execute execute) {
-  passes_.push_back({std::move(name), {}, std::move(execute), false});
+  passes_.push_back({std::move(name), {}, std::move(execute), false, {}});
   PassBuilder builder(*this, uint32_t(passes_.size() - 1));
   setup(builder);
 }
@@ -171,6 +182,7 @@ void RenderGraph::execute(VkCommandBuffer cmd, rhi::TimestampPool* timers) {
   pool_->recordImported(imported);
   std::vector<ResourceState> imageStates, bufferStates;
   const std::vector<PlannedPass> passes = plan(imageStates, bufferStates, &aliasedBefore);
+  timedPasses_.clear();
   for (const PlannedPass& pp : passes) {
     Pass& pass = passes_[pp.pass];
     std::vector<VkImageMemoryBarrier2> imageBarriers;
@@ -210,6 +222,7 @@ void RenderGraph::execute(VkCommandBuffer cmd, rhi::TimestampPool* timers) {
       vkCmdPipelineBarrier2(cmd, &dep);
     }
     uint32_t timer = timers ? timers->begin(cmd, pass.name) : UINT32_MAX;
+    if (timer != UINT32_MAX) timedPasses_.push_back(pp.pass);
     PassContext pc(*this, cmd, pp.pass);
     pass.execute(pc);
     if (timers) timers->end(cmd, timer);
@@ -219,6 +232,14 @@ void RenderGraph::execute(VkCommandBuffer cmd, rhi::TimestampPool* timers) {
     if (images_[i].external) *images_[i].external = imageStates[i];
   for (size_t i = 0; i < buffers_.size(); ++i)
     if (buffers_[i].external) *buffers_[i].external = bufferStates[i];
+}
+
+std::vector<RenderGraph::PassTiming> RenderGraph::readTimings(rhi::TimestampPool& timers) const {
+  const std::vector<rhi::TimestampPool::Timing> times = timers.read();
+  RAYSTER_ASSERT(times.size() == timedPasses_.size(), "timestamps read for another graph's execution");
+  std::vector<PassTiming> out;
+  for (size_t i = 0; i < times.size(); ++i) out.push_back({times[i].name, times[i].ms, passes_[timedPasses_[i]].info});
+  return out;
 }
 
 } // namespace rayster::graph

@@ -35,6 +35,22 @@ struct BufferHandle {
 
 class RenderGraph;
 
+// What a pass is, for everything that reports on passes (--timings, bench JSON, the viewer): a
+// property the pass declares, never inferred from its name.
+enum class PassKind : uint8_t {
+  Frame,     // the frame's own work: its GPU time counts in the frame's
+  Utility,   // work around the frame (copies for presentation): not the frame's cost, not reported
+  Readback,  // copies to the host: not the frame's cost, not reported
+  Twin,      // a raw-rate twin (PassInfo::twinOf): reported beside its pass, not the frame's cost
+};
+struct PassInfo {
+  PassKind kind = PassKind::Frame;
+  std::string twinOf;      // Twin: the pass whose rays it replays
+  uint64_t rays = 0;       // rays launched per frame: launch size × traceRayEXT calls per invocation
+  bool raysExact = false;  // true when every launched ray is traced (else `rays` is an upper bound)
+  bool reported() const { return kind == PassKind::Frame || kind == PassKind::Twin; }
+};
+
 class PassBuilder {
  public:
   ImageHandle read(ImageHandle image, Use use);
@@ -43,6 +59,10 @@ class PassBuilder {
   BufferHandle write(BufferHandle buffer, Use use);
   // Keeps the pass even if nothing reads what it writes (readbacks, host-visible results).
   void sideEffect();
+  // The pass's report metadata (PassInfo).
+  void kind(PassKind kind);
+  void twinOf(std::string pass);  // kind Twin
+  void rays(uint64_t launched, bool exact = false);
 
  private:
   friend class RenderGraph;
@@ -100,6 +120,14 @@ class RenderGraph {
   std::vector<TransientLifetime> transientLifetimes() const;
   // Records every live pass into cmd, with its barriers, label and timestamps.
   void execute(VkCommandBuffer cmd, rhi::TimestampPool* timers);
+  // After the submission of execute() completed: each timed pass's GPU time with its PassInfo, in
+  // execution order.
+  struct PassTiming {
+    std::string name;
+    double ms = 0;
+    PassInfo info;
+  };
+  std::vector<PassTiming> readTimings(rhi::TimestampPool& timers) const;
 
   const std::string& passName(uint32_t pass) const { return passes_[pass].name; }
   const std::string& imageName(uint32_t image) const { return images_[image].name; }
@@ -118,6 +146,7 @@ class RenderGraph {
     std::vector<Access> accesses;
     Execute execute;
     bool sideEffect = false;
+    PassInfo info;
   };
   struct ImageEntry {
     std::string name;
@@ -140,6 +169,7 @@ class RenderGraph {
   std::vector<Pass> passes_;
   std::vector<ImageEntry> images_;
   std::vector<BufferEntry> buffers_;
+  std::vector<uint32_t> timedPasses_;  // execute(): the pass of each timestamp region, in order
 };
 
 } // namespace rayster::graph

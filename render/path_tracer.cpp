@@ -36,6 +36,7 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
   graph::ResourceState ldrState, meanState, momentsState;
   std::map<std::string, std::vector<double>> passTimes;
   std::vector<std::string> passOrder;
+  std::map<std::string, graph::PassInfo> passInfo;
 
   for (uint32_t f = 0; f < s.frames; ++f) {
     writeConstants(f);
@@ -56,10 +57,11 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
     r.timers.reset(cmd);
     graph.execute(cmd, &r.timers);
     r.ctx.wait(r.commands.submit());
-    for (auto& t : r.timers.read()) {
-      if (t.name == "readback" || t.name == "host-visible") continue;
+    for (const auto& t : graph.readTimings(r.timers)) {
+      if (!t.info.reported()) continue;
       if (!passTimes.count(t.name)) passOrder.push_back(t.name);
       passTimes[t.name].push_back(t.ms);
+      passInfo[t.name] = t.info;
     }
     r.ctx.collectGarbage();
     if (s.progress) s.progress(f + 1, s.frames);
@@ -88,7 +90,7 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
     out.aovs.emplace_back("variance", std::move(v));
   }
   unexpose(out.hdr, exposure);
-  summarisePasses(passOrder, passTimes, out);
+  summarisePasses(passOrder, passTimes, passInfo, out);
   return out;
 }
 

@@ -55,10 +55,10 @@ class PathTracer {
 };
 
 // Per-pass GPU time statistics (median, min, p95, the samples) from each frame's timings, in
-// first-seen order; adds each median but the raw-rate twins' to out.frameMedianMs. `rays`, when
-// given, counts each pass's launched rays (render/renderer_output.cpp).
+// first-seen order, with what each pass declared (`infos`); adds each frame pass's median (not the
+// raw-rate twins') to out.frameMedianMs (render/renderer_output.cpp).
 void summarisePasses(const std::vector<std::string>& order, const std::map<std::string, std::vector<double>>& times,
-                     RenderOutput& out, const std::function<RayCount(const std::string&)>& rays = {});
+                     const std::map<std::string, graph::PassInfo>& infos, RenderOutput& out);
 
 // Divides an image of pre-exposed light (lib/frame.glsl) by the exposure, back to the scene's units:
 // HDR outputs do not depend on --exposure.

@@ -34,27 +34,6 @@ const std::vector<std::string>& aovNames() {
   return names;
 }
 
-RayCount launchedRays(const std::string& pass, uint32_t width, uint32_t height, uint32_t shadowLayers,
-                      uint32_t lightsPerHit, uint32_t maxDepth, IndirectRate indirectRate) {
-  const uint64_t pixels = uint64_t(width) * height;
-  // traceRayEXT calls per invocation, from the shaders: one primary ray (gbuffer.rgen); one shadow
-  // ray per layer (shadows.rgen, one launch layer per shadowed light); one occlusion ray (ao.rgen);
-  // one shadow ray to the importance-selected light (direct.rgen); a bounce ray plus a shadow ray at
-  // its hit (indirect.rgen); and per traced specular bounce one ray plus a shadow ray per light shaded
-  // at the hit (specular.rgen). Invocations on the background, non-specular pixels or lights behind
-  // the surface return before tracing, and paths end early, so all but the primary rays are bounds.
-  if (pass == "gbuffer-traced" || pass == "raw-gbuffer-traced") return {pixels, true};
-  if (pass == "rt-shadows" || pass == "raw-rt-shadows") return {pixels * shadowLayers, false};
-  // Raw twins (raw_rays.cpp) count the same; raw-rt-specular replays only the first bounce.
-  if (pass == "rt-ao" || pass == "rt-direct" || pass == "raw-rt-ao" || pass == "raw-rt-direct") return {pixels, false};
-  // At quarter rate both launch one invocation per 2×2 block.
-  if (pass == "rt-indirect" || pass == "raw-rt-indirect")
-    return {(indirectRate == IndirectRate::Quarter ? uint64_t((width + 1) / 2) * ((height + 1) / 2) : pixels) * 2, false};
-  if (pass == "rt-specular") return {pixels * uint64_t(maxDepth) * (1u + lightsPerHit), false};
-  if (pass == "raw-rt-specular") return {pixels * (1u + lightsPerHit), false};
-  return {};
-}
-
 const char* modeName(Mode m) {
   switch (m) {
     case Mode::PathTrace: return "pathtrace";
@@ -187,13 +166,14 @@ double Renderer::Impl::timeProducer(const RenderSettings& s, Primary p) {
     graph.addPass("keep", [&](graph::PassBuilder& b) {
       b.read(gb.normals, graph::Use::SampledCompute);
       b.sideEffect();
+      b.kind(graph::PassKind::Utility);
     }, [](graph::PassContext&) {});
     VkCommandBuffer cmd = commands.begin();
     timers.reset(cmd);
     graph.execute(cmd, &timers);
     ctx.wait(commands.submit());
-    for (auto& t : timers.read())
-      if (t.name.rfind("gbuffer-", 0) == 0) ms += t.ms;  // raster with culling: early and late draws
+    for (const auto& t : graph.readTimings(timers))  // the producer's passes (raster: culling and draws too)
+      if (t.info.kind == graph::PassKind::Frame) ms += t.ms;
   }
   return ms;
 }

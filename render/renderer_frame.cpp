@@ -88,6 +88,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
     graph.addPass("output", [&](graph::PassBuilder& b) {
       b.read(ldr, graph::Use::TransferSrc);
       b.sideEffect();
+      b.kind(graph::PassKind::Utility);
     }, [](graph::PassContext&) {});
   if (control.readback) addReadbacks(graph, gb, images, ldr);
 
@@ -101,14 +102,15 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   for (History* h : {&surfaceHistory, &shadowHistory}) h->valid = true;
   const bool measured = f >= s.warmupFrames || s.warmupFrames >= s.frames;  // never an empty sample
   double gpuMs = 0;
-  for (auto& t : timers.read()) {
-    if (t.name.rfind("readback", 0) == 0 || t.name.rfind("host-visible", 0) == 0 || t.name.rfind("output", 0) == 0)
-      continue;
-    stats.passes.emplace_back(t.name, t.ms);
-    if (t.name.rfind("raw-", 0) != 0) gpuMs += t.ms;  // raw-rate passes are not part of the frame
-    if (!measured) continue;
-    if (!r.passTimes.count(t.name)) r.passOrder.push_back(t.name);
-    r.passTimes[t.name].push_back(t.ms);
+  for (auto& t : graph.readTimings(timers)) {
+    if (!t.info.reported()) continue;
+    if (t.info.kind == graph::PassKind::Frame) gpuMs += t.ms;  // raw-rate twins are not part of the frame
+    if (measured) {
+      if (!r.passTimes.count(t.name)) r.passOrder.push_back(t.name);
+      r.passTimes[t.name].push_back(t.ms);
+      r.passInfo[t.name] = t.info;
+    }
+    stats.passes.push_back(std::move(t));
   }
   stats.gpuMs = gpuMs;
   if (measured) {
@@ -152,7 +154,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
     traceRawPrimary(graph, in, *rawPipelines);
     traceRawShadows(graph, in, gb, shadowLights(), *rawPipelines);
-    o.rawTwins = traceRawTwins(graph, in, gb, manyLights, indirectQuarter(s), *rawPipelines);
+    o.rawTwins = traceRawTwins(graph, in, gb, manyLights, indirectQuarter(s), lightsPerHit(), *rawPipelines);
   }
   // Many-light mode traces no shadow layers: lighting reads none, so only AO's needs denoising.
   o.shadow = o.shadowRaw;
@@ -165,7 +167,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
                    .denoised;
     if (aoShared) o.ao = o.shadow;
   }
-  o.specularRaw = traceSpecular(graph, in, gb);
+  o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit());
   o.specular = denoiseRadiance(graph, dn, "reflection", surface, motion, o.specularRaw,
                                specularHistory.colorPair(graph, "specular", f),
                                specularHistory.momentsPair(graph, "specular", f), temporal)

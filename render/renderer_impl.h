@@ -105,6 +105,7 @@ struct Renderer::Impl {
     std::deque<graph::ResourceState> aovStates;  // stable addresses for the graph
     std::map<std::string, std::vector<double>> passTimes;
     std::vector<std::string> passOrder;
+    std::map<std::string, graph::PassInfo> passInfo;  // what each reported pass declared
   };
   std::optional<Run> run;
   // The presentable copy of the last frame's LDR image (FrameControl::present).
@@ -122,6 +123,8 @@ struct Renderer::Impl {
   float aoRadius(const RenderSettings& s) const;
   int32_t findInstance(const std::string& name) const;
   uint32_t shadowLights() const { return manyLights ? 0u : std::min(gpu.lightCount, gpu::kMaxShadowLights); }
+  // Lights shaded (each with a shadow ray) at a bounce hit: all of them, or one picked by importance.
+  uint32_t lightsPerHit() const { return manyLights ? 1u : gpu.lightCount; }
   // The hybrid with AO traces it into the shadow visibility image's layer shadowLights() and
   // denoises it with the lights in one shadow-denoiser run (renderer_frame.cpp recordHybrid).
   static bool aoInShadowImage(const RenderSettings& s) { return s.mode != Mode::Raster && s.ao; }

@@ -57,7 +57,7 @@ void unexpose(ImageF& image, float exposure) {
 }
 
 void summarisePasses(const std::vector<std::string>& order, const std::map<std::string, std::vector<double>>& times,
-                     RenderOutput& out, const std::function<RayCount(const std::string&)>& rays) {
+                     const std::map<std::string, graph::PassInfo>& infos, RenderOutput& out) {
   for (const std::string& name : order) {
     const std::vector<double>& samples = times.at(name);
     std::vector<double> v = samples;
@@ -65,12 +65,8 @@ void summarisePasses(const std::vector<std::string>& order, const std::map<std::
     PassStats ps{name, v[v.size() / 2], v.front(), v[std::min(v.size() - 1, size_t(std::ceil(0.95 * v.size())) - 1)],
                  uint32_t(v.size())};
     ps.samplesMs = samples;
-    if (rays) {
-      const RayCount rc = rays(name);
-      ps.rays = rc.rays;
-      ps.raysExact = rc.exact;
-    }
-    if (name.rfind("raw-", 0) != 0) out.frameMedianMs += ps.medianMs;  // raw-rate twins are not the frame's
+    ps.info = infos.at(name);
+    if (ps.info.kind == graph::PassKind::Frame) out.frameMedianMs += ps.medianMs;  // twins are not the frame's
     out.passes.push_back(ps);
   }
 }
@@ -138,15 +134,7 @@ RenderOutput Renderer::Impl::endRun() {
   Run& r = *run;
   RenderOutput out = std::move(r.out);
   readImages(out);
-  const RenderSettings& s = r.settings;
-  const uint32_t lightsPerHit = manyLights ? 1u : gpu.lightCount;
-  const uint32_t bounces = specularBounces(s);
-  summarisePasses(r.passOrder, r.passTimes, out, [&](const std::string& name) {
-    const std::string twin = name.rfind("raw-", 0) == 0 ? name.substr(4) : name;  // a twin counts as its pass
-    if ((twin == "rt-ao" && !s.ao) || (twin == "rt-indirect" && !indirectOn(s))) return RayCount{};  // returns at once
-    return launchedRays(name, s.width, s.height, shadowLights(), lightsPerHit, bounces,
-                        indirectQuarter(s) ? IndirectRate::Quarter : IndirectRate::Full);
-  });
+  summarisePasses(r.passOrder, r.passTimes, r.passInfo, out);
   run.reset();
   return out;
 }
@@ -190,6 +178,7 @@ void Renderer::Impl::copyToOutput(graph::RenderGraph& graph, graph::ImageHandle 
       [&](graph::PassBuilder& b) {
         b.read(ldr, graph::Use::TransferSrc);
         b.write(dst, graph::Use::TransferDst);
+        b.kind(graph::PassKind::Utility);
       },
       [ldr, dst](graph::PassContext& pc) {
         const rhi::Image& src = pc.image(ldr);
@@ -204,6 +193,7 @@ void Renderer::Impl::copyToOutput(graph::RenderGraph& graph, graph::ImageHandle 
       [&](graph::PassBuilder& b) {
         b.read(dst, graph::Use::TransferSrc);
         b.sideEffect();
+        b.kind(graph::PassKind::Utility);
       },
       [](graph::PassContext&) {});
 }

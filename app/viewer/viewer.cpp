@@ -50,14 +50,11 @@ struct KeyEdges {
   }
 };
 
-// Rays per frame, estimated from the passes that ran: one ray per pixel per ray-generation pass
-// and per shadowed light (the traced G-buffer's primaries included).
-uint64_t estimateRays(const render::FrameStats& stats, uint32_t pixels, uint32_t shadowLayers) {
+// Rays launched this frame: what the frame's passes declared (graph::PassInfo::rays; twins excluded).
+uint64_t frameRays(const render::FrameStats& stats) {
   uint64_t rays = 0;
-  for (const auto& [name, ms] : stats.passes) {
-    if (name == "rt-shadows") rays += uint64_t(pixels) * std::max(1u, shadowLayers);
-    else if (name.rfind("rt-", 0) == 0 || name == "gbuffer-traced") rays += pixels;
-  }
+  for (const auto& p : stats.passes)
+    if (p.info.kind == graph::PassKind::Frame) rays += p.info.rays;
   return rays;
 }
 
@@ -289,9 +286,10 @@ int runViewer(const ViewOptions& o) {
       const render::FrameStats stats = renderer->renderFrame(control);
       if (failAt && failAt->second == frame) VK_CHECK(failAt->first);
       if (st.playPath) camera.reset(stats.camera);  // leaving the path continues from where it is
-      st.passes = stats.passes;
+      st.passes.clear();
+      for (const auto& p : stats.passes) st.passes.emplace_back(p.name, p.ms);
       recordHistory(st.gpuHistory, float(stats.gpuMs));
-      st.raysPerFrame = estimateRays(stats, size.width * size.height, std::min(8u, st.settings.shadowLights));
+      st.raysPerFrame = frameRays(stats);
       st.deviceBytes = renderer->deviceBytesUsed();
 
       // A debug view shows one stage, read back and mapped for display as `--aov` PNGs are.

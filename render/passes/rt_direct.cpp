@@ -15,6 +15,7 @@ graph::ImageHandle traceDirect(graph::RenderGraph& graph, const FrameInputs& in,
         for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, gb.specular})
           b.read(h, graph::Use::SampledRayTracing);
         b.write(out, graph::Use::StorageWriteRayTracing);
+        b.rays(uint64_t(in.size.width) * in.size.height);  // one shadow ray to the picked light per pixel
       },
       [gb, out, &in](graph::PassContext& pc) {
         const rhi::RayTracingPipeline& pipe = in.pipelines.direct;
