@@ -73,6 +73,15 @@ BufferHandle RenderGraph::importBuffer(std::string name, const rhi::Buffer* buff
   return {uint32_t(buffers_.size() - 1)};
 }
 
+RenderGraph::History RenderGraph::history(const std::string& name, const rhi::ImageDesc& desc) {
+  RAYSTER_ASSERT(ctx_ && histories_, "history() needs a Vulkan context and a history store");
+  HistoryStore::Entry& e = histories_->acquire(*ctx_, name, desc);
+  const uint32_t f = histories_->frame_;
+  // Frame f reads image f % 2 and writes the other.
+  return {importImage(name + "-prev", &e.images[f % 2], &e.states[f % 2]),
+          importImage(name, &e.images[(f + 1) % 2], &e.states[(f + 1) % 2]), e.frames};
+}
+
 void RenderGraph::addPass(std::string name, const std::function<void(PassBuilder&)>& setup, Execute execute) {
   passes_.push_back({std::move(name), {}, std::move(execute), false, {}});
   PassBuilder builder(*this, uint32_t(passes_.size() - 1));

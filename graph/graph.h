@@ -13,6 +13,7 @@
 
 #include <volk.h>
 
+#include "graph/history.h"
 #include "graph/resource_state.h"
 #include "graph/transient_pool.h"
 #include "rhi/resources.h"
@@ -96,13 +97,23 @@ struct PlannedPass {
 
 class RenderGraph {
  public:
-  // ctx may be null for planning-only use (unit tests): then execute() is unavailable.
-  RenderGraph(rhi::Context* ctx, TransientPool* pool) : ctx_(ctx), pool_(pool) {}
+  // ctx may be null for planning-only use (unit tests): then execute() is unavailable. Without
+  // `histories`, history() is unavailable.
+  RenderGraph(rhi::Context* ctx, TransientPool* pool, HistoryStore* histories = nullptr)
+      : ctx_(ctx), pool_(pool), histories_(histories) {}
 
   ImageHandle createImage(std::string name, const rhi::ImageDesc& desc);
   // External images/buffers keep their state in `state` across frames (histories, outputs).
   ImageHandle importImage(std::string name, const rhi::Image* image, ResourceState* state);
   BufferHandle importBuffer(std::string name, const rhi::Buffer* buffer, ResourceState* state);
+  // A temporal history of the HistoryStore (graph/history.h): `next` is written this frame (as
+  // image `name`), `previous` holds what the frame before wrote ("<name>-prev"); `frames` counts the
+  // frames accumulated in it, 0 when it is empty (first frame, reset, new size) and must not be read.
+  struct History {
+    ImageHandle previous, next;
+    uint32_t frames = 0;
+  };
+  History history(const std::string& name, const rhi::ImageDesc& desc);
 
   using Execute = std::function<void(PassContext&)>;
   void addPass(std::string name, const std::function<void(PassBuilder&)>& setup, Execute execute);
@@ -166,6 +177,7 @@ class RenderGraph {
 
   rhi::Context* ctx_;
   TransientPool* pool_;
+  HistoryStore* histories_;
   std::vector<Pass> passes_;
   std::vector<ImageEntry> images_;
   std::vector<BufferEntry> buffers_;

@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "render/history.h"
 #include "render/renderer.h"
 #include "rhi/rt_pipeline.h"
 
@@ -21,6 +20,7 @@ class TimestampPool;
 } // namespace rayster::rhi
 
 namespace rayster::graph {
+class HistoryStore;
 class TransientPool;
 }
 
@@ -38,6 +38,7 @@ struct PathTraceResources {
   const rhi::Sampler& nearest;
   const rhi::Sampler& linear;
   graph::TransientPool& transients;
+  graph::HistoryStore& histories;  // the running means: "pt-mean", "pt-moments"
   rhi::CommandList& commands;
   rhi::TimestampPool& timers;
 };
@@ -51,7 +52,6 @@ class PathTracer {
 
  private:
   rhi::RayTracingPipeline pipeline_;
-  History mean_, moments_;
 };
 
 // Per-pass GPU time statistics (median, min, p95, the samples) from each frame's timings, in

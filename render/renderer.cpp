@@ -140,22 +140,6 @@ glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::C
   return fc.unjitteredClipFromWorld;
 }
 
-void Renderer::Impl::ensureHistory(const RenderSettings& s) {
-  const VkExtent2D size{s.width, s.height};
-  surfaceHistory.ensure(ctx, surfaceDesc(size), "surface-history");
-  // One history for the shadow denoiser's layers: the lights', then AO's (aoInShadowImage).
-  const uint32_t shadowLayers = shadowLights() + (aoInShadowImage(s) ? 1u : 0u);
-  shadowHistory.ensure(ctx, shadowHistoryDesc(shadowLayers > 0 ? size : VkExtent2D{1, 1}, shadowLayers),
-                       "shadow-history");
-  specularHistory.ensure(ctx, size, true, "specular");
-  indirectHistory.ensure(ctx, size, indirectOn(s), "indirect");
-  directHistory.ensure(ctx, size, manyLights, "direct");
-  taaHistory.ensure(ctx,
-                    {kTaaHistoryFormat, s.width, s.height, 1,
-                     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
-                    "taa-history");
-}
-
 double Renderer::Impl::timeProducer(const RenderSettings& s, Primary p) {
   double ms = 0;
   for (int run = 0; run < 2; ++run) {
@@ -226,7 +210,7 @@ Result<RenderOutput> Renderer::Impl::renderPathTraced(const RenderSettings& s) {
     log::info("--mode pathtrace renders the static camera and the rest pose");
   if (!pathTracer) pathTracer = std::make_unique<PathTracer>(ctx, gpu.bindless->layout());
   manyLights = false;
-  const PathTraceResources r{ctx, gpu, pipelines, constants, nearest, linear, transients, commands, timers};
+  const PathTraceResources r{ctx, gpu, pipelines, constants, nearest, linear, transients, histories, commands, timers};
   auto out = pathTracer->render(s, r, [&](uint32_t f) {
     frameIndex = f;
     writeConstants(s, **cam, glm::vec2(0.0f), nullptr);
@@ -268,13 +252,11 @@ Status Renderer::Impl::beginRun(const RenderSettings& s) {
               out.rasterGBufferMs, out.tracedGBufferMs);
   }
 
-  ensureHistory(s);
   run->animated = scene.animated() && !gpu.instanceRecords.empty();
   motion.beginRun(scene, run->animated);
   for (const RenderSettings::Move& m : s.moves)
     if (findInstance(m.instance) < 0)
       return makeError(ExitCode::BadArguments, "--move-instance: scene '{}' has no instance '{}'", scene.name, m.instance);
-  taaHistory.valid = false;  // every run starts its own history
   run->prevCamera = *cam;
   const size_t pixels = size_t(s.width) * s.height;
   run->ldrReadback = rhi::Buffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");

@@ -48,11 +48,11 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   // A cut (the first frame of a run, a jump of the camera, or a listed frame) restarts every history.
   const bool cut = f == 0 || control.cut || isCameraCut(r.prevCamera, camera) ||
                    std::find(s.cuts.begin(), s.cuts.end(), f) != s.cuts.end();
-  if (cut || !taaHistory.valid) taaFrames = 0;
+  histories.beginFrame(f, cut);
   const glm::vec2 jitter = s.taa ? jitterNdc(f, s.width, s.height) : glm::vec2(0.0f);
   r.prevClipFromWorld = writeConstants(s, camera, jitter, cut ? nullptr : &r.prevClipFromWorld);
   r.prevCamera = camera;
-  graph::RenderGraph graph(&ctx, &transients);
+  graph::RenderGraph graph(&ctx, &transients, &histories);
   const FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, gpu.bindless->set()};
   bool moving = s.cameraPath || control.moving;
   {
@@ -71,13 +71,15 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
     const RasterFrameOutput o = raster.record(graph, in, gb, scene, camera, shadowLights());
     images = {o.visibility, o.visibility, o.specular, o.specular, o.ao, o.ao, o.indirect, o.indirect, o.hdr};
   } else {
-    images = recordHybrid(graph, in, gb, camera, f, moving, cut);
+    images = recordHybrid(graph, in, gb, camera, moving);
   }
   graph::ImageHandle hdr = images.hdr;
-  if (s.taa)
-    hdr = resolveTaa(graph, in,
-                     {hdr, gb.depth, taaHistory.previous(graph, "taa-history", f),
-                      taaHistory.next(graph, "taa-history", f), gb.motion, taaFrames});
+  if (s.taa) {
+    const graph::RenderGraph::History taa = graph.history(
+        "taa-history", {kTaaHistoryFormat, s.width, s.height, 1,
+                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+    hdr = resolveTaa(graph, in, {hdr, gb.depth, taa.previous, taa.next, gb.motion, taa.frames});
+  }
   images.hdr = hdr;
   graph::ImageHandle ldr = tonemap(graph, in, hdr, {s.tonemap, s.seed});
   if (control.present)
@@ -99,7 +101,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   const double cpuMs = msSince(frameStart);
   ctx.wait(submitted);
   const double wallMs = msSince(frameStart);
-  for (History* h : {&surfaceHistory, &shadowHistory}) h->valid = true;
+  histories.endFrame();
   const bool measured = f >= s.warmupFrames || s.warmupFrames >= s.frames;  // never an empty sample
   double gpuMs = 0;
   for (auto& t : graph.readTimings(timers)) {
@@ -119,10 +121,6 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
     out.frameWallMs.push_back(wallMs);
   }
   ctx.collectGarbage();
-  if (s.taa) {
-    taaHistory.valid = true;
-    ++taaFrames;
-  }
   stats.primaryUsed = out.primaryUsed;
   out.visibleDraws = stats.visibleDraws = out.primaryUsed == Primary::Raster ? int64_t(visibleDraws(gpu)) : -1;
   out.totalDraws = uint32_t(gpu.draws.size());
@@ -131,17 +129,28 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
 }
 
 FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                         const scene::Camera& camera, uint32_t f, bool moving, bool cut) {
+                                         const scene::Camera& camera, bool moving) {
   const RenderSettings& s = run->settings;
   FrameImages o;
-  // Every run starts without history, and so does a camera cut; while the camera or an object
-  // moves, the denoisers keep short histories.
-  const TemporalState temporal{moving, f == 0 || cut || !surfaceHistory.valid};
+  // Every run starts without history, and so does a camera cut (the history store resets them all),
+  // and a history that is new (an effect just switched on, a resize); while the camera or an
+  // object moves, the denoisers keep short histories.
   const DenoiseInputs dn{pipelines.denoise, nearest.handle(), in.size};
-  const SurfacePair surface{writeSurface(graph, dn, gb.depth, gb.normals, gb.id, gb.material,
-                                         surfaceHistory.next(graph, "surface", f), camera.zNear, camera.zFar),
-                            surfaceHistory.previous(graph, "surface", f)};
   const graph::ImageHandle motion = gb.motion;
+  const graph::RenderGraph::History surfaceHistory = graph.history("surface", surfaceDesc(in.size));
+  const SurfacePair surface{writeSurface(graph, dn, gb.depth, gb.normals, gb.id, gb.material, surfaceHistory.next,
+                                         camera.zNear, camera.zFar),
+                            surfaceHistory.previous};
+  auto temporalFor = [&](uint32_t frames) { return TemporalState{moving, surfaceHistory.frames == 0 || frames == 0}; };
+  // An SVGF signal's colour and moments histories ("<name>-history", "<name>-moments").
+  auto svgf = [&](const std::string& name, graph::ImageHandle raw) {
+    const graph::RenderGraph::History color = graph.history(name + "-history", svgfColorHistoryDesc(in.size));
+    const graph::RenderGraph::History moments = graph.history(name + "-moments", svgfMomentsHistoryDesc(in.size));
+    return denoiseRadiance(graph, dn, name == "specular" ? "reflection" : name, surface, motion, raw,
+                           {color.previous, color.next}, {moments.previous, moments.next},
+                           temporalFor(std::min(color.frames, moments.frames)))
+        .denoised;
+  };
 
   // AO on: rt-ao fills the shadow image's last layer, and one shadow-denoiser run (one guide fetch
   // per tap, one history) takes the lights and AO. AO off: its raw image is constant (1) and goes
@@ -160,32 +169,22 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   o.shadow = o.shadowRaw;
   o.ao = o.aoRaw;
   if (shadowLights() > 0 || aoShared) {
-    o.shadow = denoiseShadows(graph, dn, surface, motion, o.shadowRaw,
-                              {shadowHistory.previous(graph, "shadow-history", f),
-                               shadowHistory.next(graph, "shadow-history", f)},
-                              temporal)
+    // One history for the shadow denoiser's layers: the lights', then AO's.
+    const graph::RenderGraph::History history =
+        graph.history("shadow-history", shadowHistoryDesc(in.size, shadowLights() + (aoShared ? 1u : 0u)));
+    o.shadow = denoiseShadows(graph, dn, surface, motion, o.shadowRaw, {history.previous, history.next},
+                              temporalFor(history.frames))
                    .denoised;
     if (aoShared) o.ao = o.shadow;
   }
   o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit());
-  o.specular = denoiseRadiance(graph, dn, "reflection", surface, motion, o.specularRaw,
-                               specularHistory.colorPair(graph, "specular", f),
-                               specularHistory.momentsPair(graph, "specular", f), temporal)
-                   .denoised;
+  o.specular = svgf("specular", o.specularRaw);
   graph::ImageHandle direct;
-  if (manyLights)
-    direct = denoiseRadiance(graph, dn, "direct", surface, motion, traceDirect(graph, in, gb),
-                             directHistory.colorPair(graph, "direct", f), directHistory.momentsPair(graph, "direct", f),
-                             temporal)
-                 .denoised;
+  if (manyLights) direct = svgf("direct", traceDirect(graph, in, gb));
   // When an effect is off its raw image is constant and goes to lighting as is.
   o.indirectRaw = traceIndirect(graph, in, gb, surface.current, indirectQuarter(s));
   o.indirect = o.indirectRaw;
-  if (indirectOn(s))
-    o.indirect = denoiseRadiance(graph, dn, "indirect", surface, motion, o.indirectRaw,
-                                 indirectHistory.colorPair(graph, "indirect", f),
-                                 indirectHistory.momentsPair(graph, "indirect", f), temporal)
-                     .denoised;
+  if (indirectOn(s)) o.indirect = svgf("indirect", o.indirectRaw);
   o.hdr = shadeLighting(graph, in, gb, {o.shadow, o.specular, o.ao, o.indirect, direct});
   return o;
 }

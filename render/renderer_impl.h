@@ -15,7 +15,6 @@
 
 #include "graph/graph.h"
 #include "render/gpu_scene.h"
-#include "render/history.h"
 #include "render/instance_motion.h"
 #include "render/passes/denoise.h"
 #include "render/passes/passes.h"
@@ -56,29 +55,13 @@ struct Renderer::Impl {
   graph::TransientPool transients;
   rhi::CommandList commands;
   rhi::TimestampPool timers;
-  // Temporal state of the denoisers: the surface (disocclusion tests), shadow and AO means, SVGF
-  // colour and moments of the reflections, the indirect light and the many-light direct light;
-  // and TAA's resolved colour.
-  History surfaceHistory, shadowHistory, taaHistory;  // shadowHistory: the lights' and AO's layers
-  struct SvgfHistory {
-    History color, moments;
-    // Full size only while the signal exists (a 1×1 stand-in otherwise, never read).
-    void ensure(rhi::Context& ctx, VkExtent2D size, bool used, const std::string& name) {
-      const VkExtent2D s = used ? size : VkExtent2D{1, 1};
-      color.ensure(ctx, svgfColorHistoryDesc(s), name + "-history");
-      moments.ensure(ctx, svgfMomentsHistoryDesc(s), name + "-moments");
-    }
-    HistoryPair colorPair(graph::RenderGraph& g, const std::string& name, uint32_t f) {
-      return {color.previous(g, name + "-history", f), color.next(g, name + "-history", f)};
-    }
-    HistoryPair momentsPair(graph::RenderGraph& g, const std::string& name, uint32_t f) {
-      return {moments.previous(g, name + "-moments", f), moments.next(g, name + "-moments", f)};
-    }
-  } specularHistory, indirectHistory, directHistory;
+  // Temporal histories of the denoisers (the surface for disocclusion tests, shadow and AO means,
+  // SVGF colour and moments of reflections, indirect and many-light direct light) and of TAA: graph
+  // resources that outlive each frame's graph (graph/history.h).
+  graph::HistoryStore histories;
   std::optional<RawRayPipelines> rawPipelines;  // created on the first render with rawRays
   RasterFrame raster;  // the raster mode's passes (render/raster_frame.h)
   uint32_t frameIndex = 0;
-  uint32_t taaFrames = 0;  // frames in the TAA history since its last reset
   InstanceMotion motion;  // animation and edits (render/instance_motion.h)
   bool manyLights = false;  // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
   std::unique_ptr<PathTracer> pathTracer;  // created by the first path-traced render
@@ -137,7 +120,6 @@ struct Renderer::Impl {
   // Returns this frame's unjittered clipFromWorld.
   glm::mat4 writeConstants(const RenderSettings& s, const scene::Camera& cam, glm::vec2 jitter,
                            const glm::mat4* prevClipFromWorld);
-  void ensureHistory(const RenderSettings& s);
   // Times one G-buffer producer alone: a warm-up frame, then a measured one.
   double timeProducer(const RenderSettings& s, Primary p);
   // The camera at `frame` along the scene's path: linear between keys, clamped at the ends.
@@ -153,7 +135,7 @@ struct Renderer::Impl {
   FrameStats renderFrame(const FrameControl& control);
   // The ray-traced effects and their denoisers, then lighting.
   FrameImages recordHybrid(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                           const scene::Camera& camera, uint32_t f, bool moving, bool cut);
+                           const scene::Camera& camera, bool moving);
 
   // --- renderer_output.cpp: AOVs, readback, statistics
   // Readback of the LDR and HDR images and of the run's AOVs (RenderSettings::aovs) in this frame.
