@@ -110,8 +110,12 @@ int run(int argc, char** argv) {
                      "Surfaces at most this rough reflect as perfect mirrors (default 0.1; negative: none, every "
                      "opaque reflection is VNDF-sampled)")
       ->check(CLI::Range(-1.0f, 1.0f));
-  std::string ao = "on", indirect, indirectRate = "quarter";
+  std::string ao = "on", indirect, indirectRate = "quarter", denoise = "on";
   render->add_option("--ao", ao, "Ray-traced ambient occlusion of ambient and environment light: on (default) or off")
+      ->check(CLI::IsMember({"on", "off"}));
+  render->add_option("--denoise", denoise,
+                     "The hybrid's denoisers of shadows, AO, reflections and indirect light: on (default) or off "
+                     "(lighting takes the raw one-sample signals)")
       ->check(CLI::IsMember({"on", "off"}));
   render->add_option("--ao-radius", ro.settings.aoRadius,
                      "AO ray length in scene units (default 0.1 x the scene's bounding-box diagonal)")
@@ -131,10 +135,12 @@ int run(int argc, char** argv) {
                    "transients share memory");
   render->add_option("--aov", ro.aovs,
                      "Also write intermediates as <stem>.<name>.png and .exr: all, or a comma-separated list of "
-                     "depth, normal, albedo, material, emissive, shadow-raw, shadow-denoised, reflection-raw, "
-                     "reflection-denoised, ao-raw, ao-denoised, indirect-raw, indirect-denoised, and per "
-                     "shadowed light N (0-7) shadowN-raw, shadowN-denoised; --mode pathtrace: variance (of the mean); "
-                     "--raw-rays: raw-ao, raw-direct, raw-indirect, raw-specular (what each raw twin's rays did)");
+                     "any image of the frame by its name (--memory-report lists them; NAME:LAYER for a layer of "
+                     "an array) or of the names depth, normal, albedo, material, emissive, shadow-raw, "
+                     "shadow-denoised, reflection-raw, reflection-denoised, ao-raw, ao-denoised, indirect-raw, "
+                     "indirect-denoised, and per shadowed light N (0-7) shadowN-raw, shadowN-denoised; --mode "
+                     "pathtrace: variance (of the mean); --raw-rays: raw-ao, raw-direct, raw-indirect, raw-specular "
+                     "(what each raw twin's rays did)");
   render->add_flag("--raw-rays", ro.settings.rawRays,
                    "Also trace every ray-traced pass's rays with trivial shaders (the bench's raw-rate twins)");
   std::vector<std::string> moveInstance;
@@ -254,6 +260,7 @@ int run(int argc, char** argv) {
       return int(ExitCode::BadArguments);
     }
     ro.settings.ao = ao == "on";
+    ro.settings.denoise = denoise == "on";
     if (!indirect.empty()) ro.settings.indirect = indirect == "on";
     ro.settings.indirectRate = indirectRate == "full" ? render::IndirectRate::Full : render::IndirectRate::Quarter;
     ro.validation = validation;

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -123,9 +124,12 @@ Result<std::vector<std::string>> parseAovs(const std::string& list) {
   while (start <= list.size()) {
     size_t comma = list.find(',', start);
     std::string name = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    const auto& known = render::aovNames();
-    if (std::find(known.begin(), known.end(), name) == known.end())
-      return makeError(ExitCode::BadArguments, "--aov: unknown name '{}' (see rayster render --help)", name);
+    // Any image of the frame's graph is an AOV (checked against the first frame's images): here
+    // only the spelling.
+    const bool spelled = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == ':' || c == '.';
+    });
+    if (!spelled) return makeError(ExitCode::BadArguments, "--aov: '{}' is not an image name", name);
     names.push_back(name);
     if (comma == std::string::npos) break;
     start = comma + 1;

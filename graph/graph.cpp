@@ -56,15 +56,30 @@ const rhi::Image& PassContext::image(ImageHandle h) const {
 }
 const rhi::Buffer& PassContext::buffer(BufferHandle h) const { return *graph_.buffers_[h.id].buffer; }
 
-ImageHandle RenderGraph::createImage(std::string name, const rhi::ImageDesc& desc) {
-  images_.push_back({std::move(name), desc, nullptr, nullptr});
+ImageHandle RenderGraph::createImage(std::string name, const rhi::ImageDesc& desc, uint32_t tags) {
+  rhi::ImageDesc d = desc;
+  d.usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // any image can be read back (an AOV)
+  images_.push_back({std::move(name), d, nullptr, nullptr, tags});
   return {uint32_t(images_.size() - 1)};
 }
 
-ImageHandle RenderGraph::importImage(std::string name, const rhi::Image* image, ResourceState* state) {
+ImageHandle RenderGraph::importImage(std::string name, const rhi::Image* image, ResourceState* state, uint32_t tags) {
   RAYSTER_ASSERT(image && state, "imported image needs an image and its state");
-  images_.push_back({std::move(name), image->desc(), image, state});
+  images_.push_back({std::move(name), image->desc(), image, state, tags});
   return {uint32_t(images_.size() - 1)};
+}
+
+ImageHandle RenderGraph::findImage(std::string_view name) const {
+  for (size_t i = images_.size(); i-- > 0;)
+    if (images_[i].name == name) return {uint32_t(i)};
+  return {};
+}
+
+std::vector<std::string> RenderGraph::imageNames() const {
+  std::vector<std::string> names;
+  for (const ImageEntry& e : images_)
+    if (std::find(names.begin(), names.end(), e.name) == names.end()) names.push_back(e.name);
+  return names;
 }
 
 BufferHandle RenderGraph::importBuffer(std::string name, const rhi::Buffer* buffer, ResourceState* state) {
@@ -73,13 +88,15 @@ BufferHandle RenderGraph::importBuffer(std::string name, const rhi::Buffer* buff
   return {uint32_t(buffers_.size() - 1)};
 }
 
-RenderGraph::History RenderGraph::history(const std::string& name, const rhi::ImageDesc& desc) {
+RenderGraph::History RenderGraph::history(const std::string& name, const rhi::ImageDesc& desc, uint32_t tags) {
   RAYSTER_ASSERT(ctx_ && histories_, "history() needs a Vulkan context and a history store");
-  HistoryStore::Entry& e = histories_->acquire(*ctx_, name, desc);
+  rhi::ImageDesc d = desc;
+  d.usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // an AOV, like any image
+  HistoryStore::Entry& e = histories_->acquire(*ctx_, name, d);
   const uint32_t f = histories_->frame_;
   // Frame f reads image f % 2 and writes the other.
-  return {importImage(name + "-prev", &e.images[f % 2], &e.states[f % 2]),
-          importImage(name, &e.images[(f + 1) % 2], &e.states[(f + 1) % 2]), e.frames};
+  return {importImage(name + "-prev", &e.images[f % 2], &e.states[f % 2], tags),
+          importImage(name, &e.images[(f + 1) % 2], &e.states[(f + 1) % 2], tags), e.frames};
 }
 
 void RenderGraph::addPass(std::string name, const std::function<void(PassBuilder&)>& setup, Execute execute) {

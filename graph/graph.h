@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <volk.h>
@@ -102,9 +103,11 @@ class RenderGraph {
   RenderGraph(rhi::Context* ctx, TransientPool* pool, HistoryStore* histories = nullptr)
       : ctx_(ctx), pool_(pool), histories_(histories) {}
 
-  ImageHandle createImage(std::string name, const rhi::ImageDesc& desc);
+  // `tags`: bits whose meaning is the caller's (render: what an image holds, for its AOV). Every
+  // created image can be copied from (TRANSFER_SRC): any of them can be read back.
+  ImageHandle createImage(std::string name, const rhi::ImageDesc& desc, uint32_t tags = 0);
   // External images/buffers keep their state in `state` across frames (histories, outputs).
-  ImageHandle importImage(std::string name, const rhi::Image* image, ResourceState* state);
+  ImageHandle importImage(std::string name, const rhi::Image* image, ResourceState* state, uint32_t tags = 0);
   BufferHandle importBuffer(std::string name, const rhi::Buffer* buffer, ResourceState* state);
   // A temporal history of the HistoryStore (graph/history.h): `next` is written this frame (as
   // image `name`), `previous` holds what the frame before wrote ("<name>-prev"); `frames` counts the
@@ -113,7 +116,13 @@ class RenderGraph {
     ImageHandle previous, next;
     uint32_t frames = 0;
   };
-  History history(const std::string& name, const rhi::ImageDesc& desc);
+  History history(const std::string& name, const rhi::ImageDesc& desc, uint32_t tags = 0);
+  // The image created or imported last under `name` (invalid if none): what `--aov NAME` reads.
+  ImageHandle findImage(std::string_view name) const;
+  std::vector<std::string> imageNames() const;  // each name once, in the order first recorded
+  uint32_t imageTags(ImageHandle h) const { return images_[h.id].tags; }
+  // The image behind `h` once execute() has placed it (nullptr before, for a transient).
+  const rhi::Image* importedImage(ImageHandle h) const { return images_[h.id].image; }
 
   using Execute = std::function<void(PassContext&)>;
   void addPass(std::string name, const std::function<void(PassBuilder&)>& setup, Execute execute);
@@ -164,6 +173,7 @@ class RenderGraph {
     rhi::ImageDesc desc;
     const rhi::Image* image = nullptr;
     ResourceState* external = nullptr;
+    uint32_t tags = 0;
   };
   struct BufferEntry {
     std::string name;

@@ -41,7 +41,7 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
     r.histories.beginFrame(f, f == 0);
     graph::RenderGraph graph(&r.ctx, &r.transients, &r.histories);
     FrameInputs in{r.pipelines, r.scene, r.constants, r.nearest, r.linear, {s.width, s.height}, r.scene.bindless->set()};
-    const graph::RenderGraph::History meanHistory = graph.history("pt-mean", desc);
+    const graph::RenderGraph::History meanHistory = graph.history("pt-mean", desc, kRadianceImage);
     const graph::RenderGraph::History momentsHistory = graph.history("pt-moments", desc);
     const PathAccumulation acc{meanHistory.previous, momentsHistory.previous, meanHistory.next, momentsHistory.next};
     const graph::ImageHandle mean = tracePaths(graph, in, pipeline_, acc);

@@ -80,6 +80,9 @@ struct RenderSettings {
   float glossyThreshold = 0.5f;
   // Ray-traced ambient occlusion (TECHNIQUES.md §13) of ambient and environment light.
   bool ao = true;
+  // The hybrid's denoisers (shadows, AO, reflections, indirect, many-light direct light); off:
+  // lighting takes every effect's raw signal and the frame keeps no denoiser history.
+  bool denoise = true;
   float aoRadius = -1.0f;  // world units; <= 0: kAoRadiusFraction × the scene bounds' diagonal
   // One-bounce ray-traced indirect diffuse; unset: the scene's indirectByDefault.
   std::optional<bool> indirect;

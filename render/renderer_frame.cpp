@@ -77,7 +77,8 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   if (s.taa) {
     const graph::RenderGraph::History taa = graph.history(
         "taa-history", {kTaaHistoryFormat, s.width, s.height, 1,
-                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+        kRadianceImage);
     hdr = resolveTaa(graph, in, {hdr, gb.depth, taa.previous, taa.next, gb.motion, taa.frames});
   }
   images.hdr = hdr;
@@ -92,6 +93,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
       b.sideEffect();
       b.kind(graph::PassKind::Utility);
     }, [](graph::PassContext&) {});
+  if (f == 0 && !s.aovs.empty()) r.failure = checkAovs(graph, gb, images);
   if (control.readback) addReadbacks(graph, gb, images, ldr);
 
   VkCommandBuffer cmd = commands.begin();
@@ -131,20 +133,40 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
 FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                          const scene::Camera& camera, bool moving) {
   const RenderSettings& s = run->settings;
+  // Off means gone: an effect that is switched off or has nothing to do (no shadowed light, no
+  // surface smooth or transmissive enough to trace) records no pass and no image; lighting reads
+  // the neutral value in its place (render/neutral_images.h).
+  const uint32_t lights = shadowLights();
+  const bool ao = aoInShadowImage(s), indirect = indirectOn(s), specularPass = specularOn(s);
+  const bool denoise = s.denoise && (lights > 0 || ao || specularPass || indirect || manyLights);
   FrameImages o;
+  const graph::ImageHandle white = neutral.white(graph), black = neutral.black(graph);
+  o.shadowRaw = o.shadow = o.aoRaw = o.ao = white;
+  o.specularRaw = o.specular = o.indirectRaw = o.indirect = black;
+
+  // The surface (depth, normal, id) the denoisers test disocclusions against, and the quarter-rate
+  // indirect fill its neighbours' weights: last frame's is a history, kept only while denoising.
   // Every run starts without history, and so does a camera cut (the history store resets them all),
   // and a history that is new (an effect just switched on, a resize); while the camera or an
   // object moves, the denoisers keep short histories.
   const DenoiseInputs dn{pipelines.denoise, nearest.handle(), in.size};
   const graph::ImageHandle motion = gb.motion;
-  const graph::RenderGraph::History surfaceHistory = graph.history("surface", surfaceDesc(in.size));
-  const SurfacePair surface{writeSurface(graph, dn, gb.depth, gb.normals, gb.id, gb.material, surfaceHistory.next,
-                                         camera.zNear, camera.zFar),
-                            surfaceHistory.previous};
+  graph::RenderGraph::History surfaceHistory;
+  SurfacePair surface;
+  if (denoise || indirectQuarter(s)) {
+    if (denoise)
+      surfaceHistory = graph.history("surface", surfaceDesc(in.size));
+    else
+      surfaceHistory.next = graph.createImage("surface", surfaceDesc(in.size));
+    surface = {writeSurface(graph, dn, gb.depth, gb.normals, gb.id, gb.material, surfaceHistory.next, camera.zNear,
+                            camera.zFar),
+               surfaceHistory.previous};
+  }
   auto temporalFor = [&](uint32_t frames) { return TemporalState{moving, surfaceHistory.frames == 0 || frames == 0}; };
   // An SVGF signal's colour and moments histories ("<name>-history", "<name>-moments").
   auto svgf = [&](const std::string& name, graph::ImageHandle raw) {
-    const graph::RenderGraph::History color = graph.history(name + "-history", svgfColorHistoryDesc(in.size));
+    if (!denoise) return raw;
+    const graph::RenderGraph::History color = graph.history(name + "-history", svgfColorHistoryDesc(in.size), kRadianceImage);
     const graph::RenderGraph::History moments = graph.history(name + "-moments", svgfMomentsHistoryDesc(in.size));
     return denoiseRadiance(graph, dn, name == "specular" ? "reflection" : name, surface, motion, raw,
                            {color.previous, color.next}, {moments.previous, moments.next},
@@ -152,39 +174,44 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
         .denoised;
   };
 
-  // AO on: rt-ao fills the shadow image's last layer, and one shadow-denoiser run (one guide fetch
-  // per tap, one history) takes the lights and AO. AO off: its raw image is constant (1) and goes
-  // to lighting as is.
-  const bool aoShared = aoInShadowImage(s);
-  o.shadowRaw = traceShadows(graph, in, gb, shadowLights(), aoShared ? 1u : 0u);
-  o.aoRaw = aoShared ? traceAo(graph, in, gb, o.shadowRaw) : traceAo(graph, in, gb);
-  o.aoLayer = aoShared ? shadowLights() : 0u;
+  // With shadowed lights and AO, rt-ao fills the shadow image's last layer, and one shadow-denoiser
+  // run (one guide fetch per tap, one history) takes the lights and AO; AO alone has an image of
+  // its own. Many-light mode shadows no layer: its direct light is a pass of its own.
+  if (lights > 0) {
+    o.shadowRaw = traceShadows(graph, in, gb, lights, ao ? 1u : 0u);
+    if (ao) o.aoRaw = traceAo(graph, in, gb, o.shadowRaw);
+  } else if (ao) {
+    o.aoRaw = traceAo(graph, in, gb);
+  }
+  o.aoLayer = ao ? lights : 0u;
+  o.shadow = o.shadowRaw;
+  o.ao = o.aoRaw;
+  if (denoise && (lights > 0 || ao)) {
+    const graph::ImageHandle raw = lights > 0 ? o.shadowRaw : o.aoRaw;
+    const graph::RenderGraph::History history =
+        graph.history("shadow-history", shadowHistoryDesc(in.size, lights + (ao ? 1u : 0u)));
+    const graph::ImageHandle denoised =
+        denoiseShadows(graph, dn, surface, motion, raw, {history.previous, history.next}, temporalFor(history.frames))
+            .denoised;
+    if (lights > 0) o.shadow = denoised;
+    if (ao) o.ao = denoised;
+  }
   if (s.rawRays) {
     if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
     traceRawPrimary(graph, in, *rawPipelines);
-    traceRawShadows(graph, in, gb, shadowLights(), *rawPipelines);
-    o.rawTwins = traceRawTwins(graph, in, gb, manyLights, indirectQuarter(s), lightsPerHit(), *rawPipelines);
+    traceRawShadows(graph, in, gb, lights, *rawPipelines);
+    o.rawTwins = traceRawTwins(graph, in, gb, {ao, manyLights, indirect, specularPass}, indirectQuarter(s),
+                               lightsPerHit(), *rawPipelines);
   }
-  // Many-light mode traces no shadow layers: lighting reads none, so only AO's needs denoising.
-  o.shadow = o.shadowRaw;
-  o.ao = o.aoRaw;
-  if (shadowLights() > 0 || aoShared) {
-    // One history for the shadow denoiser's layers: the lights', then AO's.
-    const graph::RenderGraph::History history =
-        graph.history("shadow-history", shadowHistoryDesc(in.size, shadowLights() + (aoShared ? 1u : 0u)));
-    o.shadow = denoiseShadows(graph, dn, surface, motion, o.shadowRaw, {history.previous, history.next},
-                              temporalFor(history.frames))
-                   .denoised;
-    if (aoShared) o.ao = o.shadow;
+  if (specularPass) {
+    o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit());
+    o.specular = svgf("specular", o.specularRaw);
   }
-  o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit());
-  o.specular = svgf("specular", o.specularRaw);
-  graph::ImageHandle direct;
-  if (manyLights) direct = svgf("direct", traceDirect(graph, in, gb));
-  // When an effect is off its raw image is constant and goes to lighting as is.
-  o.indirectRaw = traceIndirect(graph, in, gb, surface.current, indirectQuarter(s));
-  o.indirect = o.indirectRaw;
-  if (indirectOn(s)) o.indirect = svgf("indirect", o.indirectRaw);
+  const graph::ImageHandle direct = manyLights ? svgf("direct", traceDirect(graph, in, gb)) : black;
+  if (indirect) {
+    o.indirectRaw = traceIndirect(graph, in, gb, surface.current, indirectQuarter(s));
+    o.indirect = svgf("indirect", o.indirectRaw);
+  }
   o.hdr = shadeLighting(graph, in, gb, {o.shadow, o.specular, o.ao, o.indirect, direct});
   return o;
 }

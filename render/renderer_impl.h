@@ -16,6 +16,7 @@
 #include "graph/graph.h"
 #include "render/gpu_scene.h"
 #include "render/instance_motion.h"
+#include "render/neutral_images.h"
 #include "render/passes/denoise.h"
 #include "render/passes/passes.h"
 #include "render/path_tracer.h"
@@ -59,6 +60,8 @@ struct Renderer::Impl {
   // SVGF colour and moments of reflections, indirect and many-light direct light) and of TAA: graph
   // resources that outlive each frame's graph (graph/history.h).
   graph::HistoryStore histories;
+  NeutralImages neutral;  // what lighting reads for an effect that records no pass
+  const SpecularSurfaces specular;  // whether any material is smooth or transmissive enough to trace
   std::optional<RawRayPipelines> rawPipelines;  // created on the first render with rawRays
   RasterFrame raster;  // the raster mode's passes (render/raster_frame.h)
   uint32_t frameIndex = 0;
@@ -80,7 +83,7 @@ struct Renderer::Impl {
     struct AovReadback {
       std::string name;
       VkFormat format;
-      uint32_t layer;
+      uint32_t width, height, layer;
       rhi::Buffer buffer;
       bool radiance = false;  // pre-exposed light (lib/frame.glsl): divided by the exposure on the host
     };
@@ -89,6 +92,7 @@ struct Renderer::Impl {
     std::map<std::string, std::vector<double>> passTimes;
     std::vector<std::string> passOrder;
     std::map<std::string, graph::PassInfo> passInfo;  // what each reported pass declared
+    std::optional<Error> failure;  // set by a frame (an unknown AOV): the run ends with it
   };
   std::optional<Run> run;
   // The presentable copy of the last frame's LDR image (FrameControl::present).
@@ -111,6 +115,13 @@ struct Renderer::Impl {
   // The hybrid with AO traces it into the shadow visibility image's layer shadowLights() and
   // denoises it with the lights in one shadow-denoiser run (renderer_frame.cpp recordHybrid).
   static bool aoInShadowImage(const RenderSettings& s) { return s.mode != Mode::Raster && s.ao; }
+  // Whether any surface of the scene gets traced specular light (lib/specular_weight.glsl
+  // tracedSpecularWeight > 0, with a margin for the G-buffer's 8-bit roughness): otherwise the
+  // hybrid records no specular pass.
+  bool specularOn(const RenderSettings& s) const {
+    return specular.transmission ||
+           specular.minRoughness <= std::max(s.mirrorRoughness, s.glossyThreshold + gpu::kGlossyBlend) + 1.0f / 255.0f;
+  }
   // Rays of the hybrid's reflection/refraction loop after the G-buffer surface (RenderSettings::maxDepth).
   static uint32_t specularBounces(const RenderSettings& s) {
     return std::clamp(s.maxDepth > 1 ? s.maxDepth - 1 : 1u, 1u, gpu::kMaxSpecularBounces);
@@ -140,6 +151,16 @@ struct Renderer::Impl {
   // --- renderer_output.cpp: AOVs, readback, statistics
   // Readback of the LDR and HDR images and of the run's AOVs (RenderSettings::aovs) in this frame.
   void addReadbacks(graph::RenderGraph& graph, const GBuffer& gb, const FrameImages& images, graph::ImageHandle ldr);
+  // What `--aov NAME` reads this frame: an alias (aovNames()) or any graph image, "NAME[:LAYER]".
+  struct AovSource {
+    graph::ImageHandle image;
+    uint32_t layer = 0;
+  };
+  std::optional<AovSource> resolveAov(const graph::RenderGraph& graph, const GBuffer& gb, const FrameImages& images,
+                                      const std::string& name) const;
+  // The first frame's check of the requested AOVs: a name that is neither an alias nor an image of
+  // the frame fails the run before it renders the rest.
+  std::optional<Error> checkAovs(const graph::RenderGraph& graph, const GBuffer& gb, const FrameImages& images) const;
   RenderOutput endRun();
   // The images of the last frame rendered with readback, and the scene's statistics.
   void readImages(RenderOutput& out);

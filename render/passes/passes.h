@@ -21,6 +21,10 @@ struct GpuScene;
 struct Pipelines;
 
 // What every pass may read without declaring it: immutable for the whole frame.
+// Graph image tags (graph::RenderGraph::createImage): the image holds pre-exposed light
+// (lib/frame.glsl), which an AOV of it divides back to the scene's units.
+inline constexpr uint32_t kRadianceImage = 1u;
+
 struct FrameInputs {
   const Pipelines& pipelines;
   const GpuScene& scene;
@@ -70,8 +74,13 @@ void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBu
 struct RawTwinImages {
   graph::ImageHandle ao, direct, indirect, specular;
 };
+// The twins of the effects that record a pass this frame (AO on, many-light direct light, indirect
+// on, specular surfaces in the scene).
+struct RawTwinEffects {
+  bool ao, direct, indirect, specular;
+};
 // `indirectQuarter`: as traceIndirect's `quarter` (raw-rt-indirect launches the same grid).
-RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, bool manyLights,
+RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, RawTwinEffects effects,
                             bool indirectQuarter, uint32_t lightsPerHit, const RawRayPipelines& raw);
 // Denoised by denoiseShadows() (render/passes/denoise.h).
 

@@ -25,7 +25,8 @@ graph::ImageHandle traceTwin(graph::RenderGraph& graph, const FrameInputs& in, c
                              uint64_t rays, const char* image, std::vector<std::pair<uint32_t, graph::ImageHandle>> reads,
                              uint32_t outBinding, const rhi::RayTracingPipeline& pipe, bool quarterLaunch = false) {
   graph::ImageHandle out = graph.createImage(
-      image, {kVisibilityFormat, in.size.width, in.size.height, 1, kScratchUsage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+      image, {kVisibilityFormat, in.size.width, in.size.height, 1, kScratchUsage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+      std::string_view(image) == "raw-ao" ? 0u : kRadianceImage);
   graph.addPass(
       pass,
       [&](graph::PassBuilder& b) {
@@ -103,18 +104,21 @@ void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBu
       });
 }
 
-RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, bool manyLights,
+RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, RawTwinEffects effects,
                             bool indirectQuarter, uint32_t lightsPerHit, const RawRayPipelines& raw) {
   RawTwinImages t;
   const uint64_t pixels = uint64_t(in.size.width) * in.size.height;
-  t.ao = traceTwin(graph, in, "raw-rt-ao", "rt-ao", pixels, "raw-ao", {{2, gb.depth}, {3, gb.normals}}, 4, raw.ao);
-  if (manyLights)
+  if (effects.ao)
+    t.ao = traceTwin(graph, in, "raw-rt-ao", "rt-ao", pixels, "raw-ao", {{2, gb.depth}, {3, gb.normals}}, 4, raw.ao);
+  if (effects.direct)
     t.direct = traceTwin(graph, in, "raw-rt-direct", "rt-direct", pixels, "raw-direct", {{2, gb.depth}, {3, gb.normals}},
                          4, raw.direct);
-  t.indirect = traceTwin(graph, in, "raw-rt-indirect", "rt-indirect", indirectLaunch(in.size, indirectQuarter) * 2,
+  if (effects.indirect)
+    t.indirect = traceTwin(graph, in, "raw-rt-indirect", "rt-indirect", indirectLaunch(in.size, indirectQuarter) * 2,
                          "raw-indirect", {{2, gb.depth}, {3, gb.normals}}, 4, raw.indirect, indirectQuarter);
   // Only the first bounce: its ray and a shadow ray per light shaded at the hit.
-  t.specular = traceTwin(graph, in, "raw-rt-specular", "rt-specular", pixels * (1u + lightsPerHit), "raw-specular",
+  if (effects.specular)
+    t.specular = traceTwin(graph, in, "raw-rt-specular", "rt-specular", pixels * (1u + lightsPerHit), "raw-specular",
                          {{2, gb.depth}, {3, gb.normals}, {4, gb.albedo}, {5, gb.material}, {7, gb.emissive},
                           {8, gb.specular}},
                          6,

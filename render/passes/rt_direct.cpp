@@ -8,7 +8,8 @@ namespace rayster::render {
 graph::ImageHandle traceDirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb) {
   graph::ImageHandle out = graph.createImage(
       "direct-raw", {kRadianceFormat, in.size.width, in.size.height, 1,
-                     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+                     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+      kRadianceImage);
   graph.addPass(
       "rt-direct",
       [&](graph::PassBuilder& b) {

@@ -21,7 +21,8 @@ graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& i
                                  graph::ImageHandle surface, bool quarter) {
   graph::ImageHandle out = graph.createImage(
       "indirect-raw", {kRadianceFormat, in.size.width, in.size.height, 1,
-                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+      kRadianceImage);
   graph.addPass(
       "rt-indirect",
       [&](graph::PassBuilder& b) {

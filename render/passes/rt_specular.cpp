@@ -11,7 +11,8 @@ graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& i
                                  uint32_t lightsPerHit) {
   graph::ImageHandle out = graph.createImage(
       "specular-raw", {kRadianceFormat, in.size.width, in.size.height, 1,
-                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+      kRadianceImage);
   graph.addPass(
       "rt-specular",
       [&](graph::PassBuilder& b) {
