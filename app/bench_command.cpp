@@ -77,9 +77,9 @@ json passJson(const render::PassStats& p) {
           {"max_ms", s.max},
           {"frames", p.samples},
           {"samples_ms", p.samplesMs},
-          {"rays", p.rays},
-          {"rays_exact", p.raysExact},
-          {"grays_per_s", graysPerSecond(p.rays, p.medianMs)}};
+          {"rays", p.info.rays},
+          {"rays_exact", p.info.raysExact},
+          {"grays_per_s", graysPerSecond(p.info.rays, p.medianMs)}};
 }
 
 json configResult(const rhi::Context& ctx, const BenchConfig& c, const render::RenderOutput& out) {
@@ -98,12 +98,12 @@ json configResult(const rhi::Context& ctx, const BenchConfig& c, const render::R
     json pj = passJson(p);
     // The raw-rate twin traced the same rays with trivial shaders: the pass reaches raw/pass of its rate.
     for (const auto& r : out.passes)
-      if (r.name == "raw-" + p.name && p.medianMs > 0) {
+      if (r.info.twinOf == p.name && p.medianMs > 0) {
         pj["raw_ms"] = r.medianMs;
         pj["raw_fraction"] = r.medianMs / p.medianMs;
       }
     j["passes"].push_back(pj);
-    if (p.name.rfind("raw-", 0) != 0) rays += p.rays;
+    if (p.info.kind == graph::PassKind::Frame) rays += p.info.rays;
   }
   const Summary gpu = summarize(out.frameGpuMs);
   j["frame"] = {{"gpu_ms", summaryJson(gpu)},

@@ -64,7 +64,7 @@ struct RenderArgs {
   CLI::App* app = nullptr;
   RenderOptions options;
   std::string size = "1280x720", primary = "auto", tonemap = "aces", taa = "on", mode = "hybrid", culling = "on";
-  std::string ao = "on", indirect, indirectRate = "quarter";
+  std::string ao = "on", indirect, indirectRate = "quarter", denoise = "on";
   uint32_t spp = 0;
   std::vector<std::string> moveInstance;
 };
@@ -143,6 +143,10 @@ void addRenderEffectOptions(CLI::App* render, RenderArgs& a) {
       ->check(CLI::Range(-1.0f, 1.0f));
   render->add_option("--ao", a.ao, "Ray-traced ambient occlusion of ambient and environment light: on (default) or off")
       ->check(CLI::IsMember({"on", "off"}));
+  render->add_option("--denoise", a.denoise,
+                     "The hybrid's denoisers of shadows, AO, reflections and indirect light: on (default) or off "
+                     "(lighting takes the raw one-sample signals)")
+      ->check(CLI::IsMember({"on", "off"}));
   render->add_option("--ao-radius", ro.settings.aoRadius,
                      "AO ray length in scene units (default 0.1 x the scene's bounding-box diagonal)")
       ->check(CLI::PositiveNumber);
@@ -166,10 +170,12 @@ void addRenderReportOptions(CLI::App* render, RenderArgs& a) {
                    "transients share memory");
   render->add_option("--aov", ro.aovs,
                      "Also write intermediates as <stem>.<name>.png and .exr: all, or a comma-separated list of "
-                     "depth, normal, albedo, material, emissive, shadow-raw, shadow-denoised, reflection-raw, "
-                     "reflection-denoised, ao-raw, ao-denoised, indirect-raw, indirect-denoised, and per "
-                     "shadowed light N (0-7) shadowN-raw, shadowN-denoised; --mode pathtrace: variance (of the mean); "
-                     "--raw-rays: raw-ao, raw-direct, raw-indirect, raw-specular (what each raw twin's rays did)");
+                     "any image of the frame by its name (--memory-report lists them; NAME:LAYER for a layer of "
+                     "an array) or of the names depth, normal, albedo, material, emissive, shadow-raw, "
+                     "shadow-denoised, reflection-raw, reflection-denoised, ao-raw, ao-denoised, indirect-raw, "
+                     "indirect-denoised, and per shadowed light N (0-7) shadowN-raw, shadowN-denoised; --mode "
+                     "pathtrace: variance (of the mean); --raw-rays: raw-ao, raw-direct, raw-indirect, raw-specular "
+                     "(what each raw twin's rays did)");
   render->add_flag("--raw-rays", ro.settings.rawRays,
                    "Also trace every ray-traced pass's rays with trivial shaders (the bench's raw-rate twins)");
   render->add_option("--move-instance", a.moveInstance,
@@ -205,6 +211,7 @@ int runRender(RenderArgs& a, const GlobalOptions& g) {
   ro.framesGiven = a.app->count("--frames") > 0 || a.spp > 0;
   if (Status m = parseMoves(a.moveInstance, ro.settings.moves); !m) return badArguments(m.error().message);
   ro.settings.ao = a.ao == "on";
+  ro.settings.denoise = a.denoise == "on";
   if (!a.indirect.empty()) ro.settings.indirect = a.indirect == "on";
   ro.settings.indirectRate = a.indirectRate == "full" ? render::IndirectRate::Full : render::IndirectRate::Quarter;
   ro.validation = g.validation;

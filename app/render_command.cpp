@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -95,7 +96,7 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
                       {"history_bytes", st.historyBytes}};
   for (const auto& p : out.passes)
     j["passes"].push_back({{"name", p.name}, {"median_ms", p.medianMs}, {"min_ms", p.minMs}, {"p95_ms", p.p95Ms},
-                           {"frames", p.samples}, {"rays", p.rays}});
+                           {"frames", p.samples}, {"rays", p.info.rays}});
   return j;
 }
 
@@ -124,9 +125,12 @@ Result<std::vector<std::string>> parseAovs(const std::string& list) {
   while (start <= list.size()) {
     size_t comma = list.find(',', start);
     std::string name = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    const auto& known = render::aovNames();
-    if (std::find(known.begin(), known.end(), name) == known.end())
-      return makeError(ExitCode::BadArguments, "--aov: unknown name '{}' (see rayster render --help)", name);
+    // Any image of the frame's graph is an AOV (checked against the first frame's images): here
+    // only the spelling.
+    const bool spelled = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == ':' || c == '.';
+    });
+    if (!spelled) return makeError(ExitCode::BadArguments, "--aov: '{}' is not an image name", name);
     names.push_back(name);
     if (comma == std::string::npos) break;
     start = comma + 1;

@@ -34,6 +34,17 @@ BufferHandle PassBuilder::write(BufferHandle buffer, Use use) {
 }
 
 void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
+void PassBuilder::kind(PassKind kind) { graph_.passes_[pass_].info.kind = kind; }
+void PassBuilder::twinOf(std::string pass) {
+  PassInfo& info = graph_.passes_[pass_].info;
+  info.kind = PassKind::Twin;
+  info.twinOf = std::move(pass);
+}
+void PassBuilder::rays(uint64_t launched, bool exact) {
+  PassInfo& info = graph_.passes_[pass_].info;
+  info.rays = launched;
+  info.raysExact = exact;
+}
 
 const rhi::Image& PassContext::image(ImageHandle h) const {
   // Transients alias by lifetime: a pass may only touch images it declared (read or write).
@@ -45,15 +56,30 @@ const rhi::Image& PassContext::image(ImageHandle h) const {
 }
 const rhi::Buffer& PassContext::buffer(BufferHandle h) const { return *graph_.buffers_[h.id].buffer; }
 
-ImageHandle RenderGraph::createImage(std::string name, const rhi::ImageDesc& desc) {
-  images_.push_back({std::move(name), desc, nullptr, nullptr});
+ImageHandle RenderGraph::createImage(std::string name, const rhi::ImageDesc& desc, uint32_t tags) {
+  rhi::ImageDesc d = desc;
+  d.usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // any image can be read back (an AOV)
+  images_.push_back({std::move(name), d, nullptr, nullptr, tags});
   return {uint32_t(images_.size() - 1)};
 }
 
-ImageHandle RenderGraph::importImage(std::string name, const rhi::Image* image, ResourceState* state) {
+ImageHandle RenderGraph::importImage(std::string name, const rhi::Image* image, ResourceState* state, uint32_t tags) {
   RAYSTER_ASSERT(image && state, "imported image needs an image and its state");
-  images_.push_back({std::move(name), image->desc(), image, state});
+  images_.push_back({std::move(name), image->desc(), image, state, tags});
   return {uint32_t(images_.size() - 1)};
+}
+
+ImageHandle RenderGraph::findImage(std::string_view name) const {
+  for (size_t i = images_.size(); i-- > 0;)
+    if (images_[i].name == name) return {uint32_t(i)};
+  return {};
+}
+
+std::vector<std::string> RenderGraph::imageNames() const {
+  std::vector<std::string> names;
+  for (const ImageEntry& e : images_)
+    if (std::find(names.begin(), names.end(), e.name) == names.end()) names.push_back(e.name);
+  return names;
 }
 
 BufferHandle RenderGraph::importBuffer(std::string name, const rhi::Buffer* buffer, ResourceState* state) {
@@ -62,8 +88,19 @@ BufferHandle RenderGraph::importBuffer(std::string name, const rhi::Buffer* buff
   return {uint32_t(buffers_.size() - 1)};
 }
 
+RenderGraph::History RenderGraph::history(const std::string& name, const rhi::ImageDesc& desc, uint32_t tags) {
+  RAYSTER_ASSERT(ctx_ && histories_, "history() needs a Vulkan context and a history store");
+  rhi::ImageDesc d = desc;
+  d.usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // an AOV, like any image
+  HistoryStore::Entry& e = histories_->acquire(*ctx_, name, d);
+  const uint32_t f = histories_->frame_;
+  // Frame f reads image f % 2 and writes the other.
+  return {importImage(name + "-prev", &e.images[f % 2], &e.states[f % 2], tags),
+          importImage(name, &e.images[(f + 1) % 2], &e.states[(f + 1) % 2], tags), e.frames};
+}
+
 void RenderGraph::addPass(std::string name, const std::function<void(PassBuilder&)>& setup, Execute execute) {
-  passes_.push_back({std::move(name), {}, std::move(execute), false});
+  passes_.push_back({std::move(name), {}, std::move(execute), false, {}});
   PassBuilder builder(*this, uint32_t(passes_.size() - 1));
   setup(builder);
 }
@@ -171,6 +208,7 @@ void RenderGraph::execute(VkCommandBuffer cmd, rhi::TimestampPool* timers) {
   pool_->recordImported(imported);
   std::vector<ResourceState> imageStates, bufferStates;
   const std::vector<PlannedPass> passes = plan(imageStates, bufferStates, &aliasedBefore);
+  timedPasses_.clear();
   for (const PlannedPass& pp : passes) {
     Pass& pass = passes_[pp.pass];
     std::vector<VkImageMemoryBarrier2> imageBarriers;
@@ -210,6 +248,7 @@ void RenderGraph::execute(VkCommandBuffer cmd, rhi::TimestampPool* timers) {
       vkCmdPipelineBarrier2(cmd, &dep);
     }
     uint32_t timer = timers ? timers->begin(cmd, pass.name) : UINT32_MAX;
+    if (timer != UINT32_MAX) timedPasses_.push_back(pp.pass);
     PassContext pc(*this, cmd, pp.pass);
     pass.execute(pc);
     if (timers) timers->end(cmd, timer);
@@ -219,6 +258,14 @@ void RenderGraph::execute(VkCommandBuffer cmd, rhi::TimestampPool* timers) {
     if (images_[i].external) *images_[i].external = imageStates[i];
   for (size_t i = 0; i < buffers_.size(); ++i)
     if (buffers_[i].external) *buffers_[i].external = bufferStates[i];
+}
+
+std::vector<RenderGraph::PassTiming> RenderGraph::readTimings(rhi::TimestampPool& timers) const {
+  const std::vector<rhi::TimestampPool::Timing> times = timers.read();
+  RAYSTER_ASSERT(times.size() == timedPasses_.size(), "timestamps read for another graph's execution");
+  std::vector<PassTiming> out;
+  for (size_t i = 0; i < times.size(); ++i) out.push_back({times[i].name, times[i].ms, passes_[timedPasses_[i]].info});
+  return out;
 }
 
 } // namespace rayster::graph

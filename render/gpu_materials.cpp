@@ -13,6 +13,7 @@
 // to diffuse ones would need a per-path flag and would break the reference's consistency; the spec
 // leaves rays other than the camera's to the renderer, since it means unlit for baked or stylised
 // colour.)
+#include <algorithm>
 #include <map>
 
 #include "render/gpu_scene.h"
@@ -39,6 +40,28 @@ rhi::Image uploadTexture(rhi::Context& ctx, const scene::ImageData& img) {
   rhi::ImageDesc desc{VK_FORMAT_R8G8B8A8_UNORM, uint32_t(img.width), uint32_t(img.height), 1, 0, false, 1, true};
   return rhi::uploadImage(ctx, desc, std::as_bytes(std::span(img.rgba)), true,
                           img.name.empty() ? "texture" : img.name.c_str());
+}
+
+SpecularSurfaces specularSurfaces(const scene::Scene& scene) {
+  SpecularSurfaces out;
+  std::map<int32_t, float> lowestG;  // by texture: the lowest G of its image's texels
+  for (const scene::Material& m : scene.materials) {
+    if (m.unlit) continue;  // scatters nothing (see above)
+    out.transmission = out.transmission || m.transmission > 0.0f;
+    float texture = 1.0f;
+    if (const int32_t t = m.metallicRoughnessTexture.texture; t >= 0) {
+      auto [it, fresh] = lowestG.try_emplace(t, 0.0f);
+      if (fresh && size_t(t) < scene.textures.size() && scene.textures[size_t(t)].image < scene.images.size()) {
+        const scene::ImageData& img = scene.images[scene.textures[size_t(t)].image];
+        uint8_t g = img.rgba.empty() ? 0 : 255;  // an image not decoded: assume the worst
+        for (size_t i = 1; i < img.rgba.size(); i += 4) g = std::min(g, img.rgba[i]);
+        it->second = g / 255.0f;
+      }
+      texture = it->second;
+    }
+    out.minRoughness = std::min(out.minRoughness, std::clamp(m.roughness * texture, 0.0f, 1.0f));
+  }
+  return out;
 }
 
 void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs) {

@@ -86,6 +86,16 @@ struct GpuScene {
 
 Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene);
 
+// What the scene's materials can ask of the hybrid's specular pass (render/gpu_materials.cpp): the
+// lowest roughness any lit material can reach (its factor × the lowest G of its metallic-roughness
+// texture: filtering only averages texels) and whether any material transmits. A scene whose
+// surfaces are all rougher than the traced range records no specular pass.
+struct SpecularSurfaces {
+  float minRoughness = 1.0f;
+  bool transmission = false;
+};
+SpecularSurfaces specularSurfaces(const scene::Scene& scene);
+
 // Materials and textures (render/gpu_materials.cpp).
 void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs);
 // Environment map and its irradiance (render/gpu_environment.cpp).

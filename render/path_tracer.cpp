@@ -25,8 +25,6 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
   const bool variance = std::find(s.aovs.begin(), s.aovs.end(), "variance") != s.aovs.end();
   const rhi::ImageDesc desc{kPathAccumulationFormat, s.width, s.height, 1,
                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT};
-  mean_.ensure(r.ctx, desc, "pt-mean");
-  moments_.ensure(r.ctx, desc, "pt-moments");
 
   const size_t pixels = size_t(s.width) * s.height;
   rhi::Buffer ldrReadback(r.ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
@@ -36,13 +34,16 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
   graph::ResourceState ldrState, meanState, momentsState;
   std::map<std::string, std::vector<double>> passTimes;
   std::vector<std::string> passOrder;
+  std::map<std::string, graph::PassInfo> passInfo;
 
   for (uint32_t f = 0; f < s.frames; ++f) {
     writeConstants(f);
-    graph::RenderGraph graph(&r.ctx, &r.transients);
+    r.histories.beginFrame(f, f == 0);
+    graph::RenderGraph graph(&r.ctx, &r.transients, &r.histories);
     FrameInputs in{r.pipelines, r.scene, r.constants, r.nearest, r.linear, {s.width, s.height}, r.scene.bindless->set()};
-    const PathAccumulation acc{mean_.previous(graph, "pt-mean", f), moments_.previous(graph, "pt-moments", f),
-                               mean_.next(graph, "pt-mean", f), moments_.next(graph, "pt-moments", f)};
+    const graph::RenderGraph::History meanHistory = graph.history("pt-mean", desc, kRadianceImage);
+    const graph::RenderGraph::History momentsHistory = graph.history("pt-moments", desc);
+    const PathAccumulation acc{meanHistory.previous, momentsHistory.previous, meanHistory.next, momentsHistory.next};
     const graph::ImageHandle mean = tracePaths(graph, in, pipeline_, acc);
     if (f + 1 == s.frames) {
       const graph::ImageHandle ldr = tonemap(graph, in, mean, {s.tonemap, s.seed});
@@ -56,10 +57,12 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
     r.timers.reset(cmd);
     graph.execute(cmd, &r.timers);
     r.ctx.wait(r.commands.submit());
-    for (auto& t : r.timers.read()) {
-      if (t.name == "readback" || t.name == "host-visible") continue;
+    r.histories.endFrame();
+    for (const auto& t : graph.readTimings(r.timers)) {
+      if (!t.info.reported()) continue;
       if (!passTimes.count(t.name)) passOrder.push_back(t.name);
       passTimes[t.name].push_back(t.ms);
+      passInfo[t.name] = t.info;
     }
     r.ctx.collectGarbage();
     if (s.progress) s.progress(f + 1, s.frames);
@@ -88,7 +91,7 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
     out.aovs.emplace_back("variance", std::move(v));
   }
   unexpose(out.hdr, exposure);
-  summarisePasses(passOrder, passTimes, out);
+  summarisePasses(passOrder, passTimes, passInfo, out);
   return out;
 }
 

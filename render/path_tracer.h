@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "render/history.h"
 #include "render/renderer.h"
 #include "rhi/rt_pipeline.h"
 
@@ -21,6 +20,7 @@ class TimestampPool;
 } // namespace rayster::rhi
 
 namespace rayster::graph {
+class HistoryStore;
 class TransientPool;
 }
 
@@ -38,6 +38,7 @@ struct PathTraceResources {
   const rhi::Sampler& nearest;
   const rhi::Sampler& linear;
   graph::TransientPool& transients;
+  graph::HistoryStore& histories;  // the running means: "pt-mean", "pt-moments"
   rhi::CommandList& commands;
   rhi::TimestampPool& timers;
 };
@@ -51,14 +52,13 @@ class PathTracer {
 
  private:
   rhi::RayTracingPipeline pipeline_;
-  History mean_, moments_;
 };
 
 // Per-pass GPU time statistics (median, min, p95, the samples) from each frame's timings, in
-// first-seen order; adds each median but the raw-rate twins' to out.frameMedianMs. `rays`, when
-// given, counts each pass's launched rays (render/renderer_output.cpp).
+// first-seen order, with what each pass declared (`infos`); adds each frame pass's median (not the
+// raw-rate twins') to out.frameMedianMs (render/renderer_output.cpp).
 void summarisePasses(const std::vector<std::string>& order, const std::map<std::string, std::vector<double>>& times,
-                     RenderOutput& out, const std::function<RayCount(const std::string&)>& rays = {});
+                     const std::map<std::string, graph::PassInfo>& infos, RenderOutput& out);
 
 // Divides an image of pre-exposed light (lib/frame.glsl) by the exposure, back to the scene's units:
 // HDR outputs do not depend on --exposure.

@@ -34,27 +34,6 @@ const std::vector<std::string>& aovNames() {
   return names;
 }
 
-RayCount launchedRays(const std::string& pass, uint32_t width, uint32_t height, uint32_t shadowLayers,
-                      uint32_t lightsPerHit, uint32_t maxDepth, IndirectRate indirectRate) {
-  const uint64_t pixels = uint64_t(width) * height;
-  // traceRayEXT calls per invocation, from the shaders: one primary ray (gbuffer.rgen); one shadow
-  // ray per layer (shadows.rgen, one launch layer per shadowed light); one occlusion ray (ao.rgen);
-  // one shadow ray to the importance-selected light (direct.rgen); a bounce ray plus a shadow ray at
-  // its hit (indirect.rgen); and per traced specular bounce one ray plus a shadow ray per light shaded
-  // at the hit (specular.rgen). Invocations on the background, non-specular pixels or lights behind
-  // the surface return before tracing, and paths end early, so all but the primary rays are bounds.
-  if (pass == "gbuffer-traced" || pass == "raw-gbuffer-traced") return {pixels, true};
-  if (pass == "rt-shadows" || pass == "raw-rt-shadows") return {pixels * shadowLayers, false};
-  // Raw twins (raw_rays.cpp) count the same; raw-rt-specular replays only the first bounce.
-  if (pass == "rt-ao" || pass == "rt-direct" || pass == "raw-rt-ao" || pass == "raw-rt-direct") return {pixels, false};
-  // At quarter rate both launch one invocation per 2×2 block.
-  if (pass == "rt-indirect" || pass == "raw-rt-indirect")
-    return {(indirectRate == IndirectRate::Quarter ? uint64_t((width + 1) / 2) * ((height + 1) / 2) : pixels) * 2, false};
-  if (pass == "rt-specular") return {pixels * uint64_t(maxDepth) * (1u + lightsPerHit), false};
-  if (pass == "raw-rt-specular") return {pixels * (1u + lightsPerHit), false};
-  return {};
-}
-
 const char* modeName(Mode m) {
   switch (m) {
     case Mode::PathTrace: return "pathtrace";
@@ -79,7 +58,7 @@ Renderer::Impl::Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
       linear(c, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       constants(c, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, rhi::MemoryUsage::Upload,
                 "frame-constants"),
-      commands(c), timers(c, kMaxTimedPasses), raster(c) {}
+      commands(c), timers(c, kMaxTimedPasses), neutral(c), specular(specularSurfaces(s)), raster(c) {}
 
 float Renderer::Impl::aoRadius(const RenderSettings& s) const {
   if (s.aoRadius > 0.0f) return s.aoRadius;
@@ -161,22 +140,6 @@ glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::C
   return fc.unjitteredClipFromWorld;
 }
 
-void Renderer::Impl::ensureHistory(const RenderSettings& s) {
-  const VkExtent2D size{s.width, s.height};
-  surfaceHistory.ensure(ctx, surfaceDesc(size), "surface-history");
-  // One history for the shadow denoiser's layers: the lights', then AO's (aoInShadowImage).
-  const uint32_t shadowLayers = shadowLights() + (aoInShadowImage(s) ? 1u : 0u);
-  shadowHistory.ensure(ctx, shadowHistoryDesc(shadowLayers > 0 ? size : VkExtent2D{1, 1}, shadowLayers),
-                       "shadow-history");
-  specularHistory.ensure(ctx, size, true, "specular");
-  indirectHistory.ensure(ctx, size, indirectOn(s), "indirect");
-  directHistory.ensure(ctx, size, manyLights, "direct");
-  taaHistory.ensure(ctx,
-                    {kTaaHistoryFormat, s.width, s.height, 1,
-                     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
-                    "taa-history");
-}
-
 double Renderer::Impl::timeProducer(const RenderSettings& s, Primary p) {
   double ms = 0;
   for (int run = 0; run < 2; ++run) {
@@ -187,13 +150,14 @@ double Renderer::Impl::timeProducer(const RenderSettings& s, Primary p) {
     graph.addPass("keep", [&](graph::PassBuilder& b) {
       b.read(gb.normals, graph::Use::SampledCompute);
       b.sideEffect();
+      b.kind(graph::PassKind::Utility);
     }, [](graph::PassContext&) {});
     VkCommandBuffer cmd = commands.begin();
     timers.reset(cmd);
     graph.execute(cmd, &timers);
     ctx.wait(commands.submit());
-    for (auto& t : timers.read())
-      if (t.name.rfind("gbuffer-", 0) == 0) ms += t.ms;  // raster with culling: early and late draws
+    for (const auto& t : graph.readTimings(timers))  // the producer's passes (raster: culling and draws too)
+      if (t.info.kind == graph::PassKind::Frame) ms += t.ms;
   }
   return ms;
 }
@@ -246,7 +210,7 @@ Result<RenderOutput> Renderer::Impl::renderPathTraced(const RenderSettings& s) {
     log::info("--mode pathtrace renders the static camera and the rest pose");
   if (!pathTracer) pathTracer = std::make_unique<PathTracer>(ctx, gpu.bindless->layout());
   manyLights = false;
-  const PathTraceResources r{ctx, gpu, pipelines, constants, nearest, linear, transients, commands, timers};
+  const PathTraceResources r{ctx, gpu, pipelines, constants, nearest, linear, transients, histories, commands, timers};
   auto out = pathTracer->render(s, r, [&](uint32_t f) {
     frameIndex = f;
     writeConstants(s, **cam, glm::vec2(0.0f), nullptr);
@@ -288,27 +252,28 @@ Status Renderer::Impl::beginRun(const RenderSettings& s) {
               out.rasterGBufferMs, out.tracedGBufferMs);
   }
 
-  ensureHistory(s);
   run->animated = scene.animated() && !gpu.instanceRecords.empty();
   motion.beginRun(scene, run->animated);
   for (const RenderSettings::Move& m : s.moves)
     if (findInstance(m.instance) < 0)
       return makeError(ExitCode::BadArguments, "--move-instance: scene '{}' has no instance '{}'", scene.name, m.instance);
-  taaHistory.valid = false;  // every run starts its own history
   run->prevCamera = *cam;
   const size_t pixels = size_t(s.width) * s.height;
   run->ldrReadback = rhi::Buffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
   run->hdrReadback = rhi::Buffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "hdr-readback");
-  for (const std::string& name : s.aovs)
-    if (std::find(aovNames().begin(), aovNames().end(), name) == aovNames().end())
-      return makeError(ExitCode::BadArguments, "unknown AOV '{}'", name);
-  return okStatus();
+  return okStatus();  // AOV names are checked against the first frame's images (checkAovs)
 }
 
 Result<RenderOutput> Renderer::Impl::render(const RenderSettings& s) {
   if (auto begun = beginRun(s); !begun) return begun.error();
   for (uint32_t f = 0; f < s.frames; ++f) {
     renderFrame({.readback = f + 1 == s.frames});
+    if (run->failure) {
+      Error e = *run->failure;
+      ctx.waitIdle();
+      run.reset();
+      return e;
+    }
     if (s.progress) s.progress(f + 1, s.frames);
   }
   return endRun();

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "graph/graph.h"
 #include "render/tonemap_curves.h"
 #include "scene/scene.h"
 
@@ -79,6 +80,9 @@ struct RenderSettings {
   float glossyThreshold = 0.5f;
   // Ray-traced ambient occlusion (docs/techniques.md §15) of ambient and environment light.
   bool ao = true;
+  // The hybrid's denoisers (shadows, AO, reflections, indirect, many-light direct light); off:
+  // lighting takes every effect's raw signal and the frame keeps no denoiser history.
+  bool denoise = true;
   float aoRadius = -1.0f;  // world units; <= 0: kAoRadiusFraction × the scene bounds' diagonal
   // One-bounce ray-traced indirect diffuse; unset: the scene's indirectByDefault.
   std::optional<bool> indirect;
@@ -109,21 +113,11 @@ struct PassStats {
   double medianMs = 0, minMs = 0, p95Ms = 0;
   uint32_t samples = 0;
   std::vector<double> samplesMs;  // per measured frame, in frame order (for significance tests)
-  // Rays the pass launches per frame: launch size × traceRayEXT calls per invocation, an upper bound
-  // where an invocation may return early (background, back-facing light) or a path ends early;
-  // raysExact says when the figure is exact. 0 for passes that trace nothing. See launchedRays().
-  uint64_t rays = 0;
-  bool raysExact = false;
+  // What the pass declared (graph::PassInfo): its kind, the pass a twin replays, and the rays it
+  // launches per frame (launch size × traceRayEXT calls per invocation, an upper bound where an
+  // invocation may return early; `info.raysExact` when the figure is exact; 0: traces nothing).
+  graph::PassInfo info;
 };
-
-// Rays per frame of the pass named `pass` at this size: launch size × traces per invocation.
-// Exact only for the traced G-buffer (one primary ray per pixel); the others are upper bounds.
-struct RayCount {
-  uint64_t rays = 0;
-  bool exact = false;
-};
-RayCount launchedRays(const std::string& pass, uint32_t width, uint32_t height, uint32_t shadowLayers,
-                      uint32_t lightsPerHit, uint32_t maxDepth, IndirectRate indirectRate = IndirectRate::Full);
 
 // Names accepted by RenderSettings::aovs, in the order `--aov all` writes them.
 const std::vector<std::string>& aovNames();
@@ -172,7 +166,7 @@ struct FrameControl {
 
 // One frame's GPU time per pass, from the graph's timestamps.
 struct FrameStats {
-  std::vector<std::pair<std::string, double>> passes;
+  std::vector<graph::RenderGraph::PassTiming> passes;  // the reported ones (PassInfo::reported())
   double gpuMs = 0;
   Primary primaryUsed = Primary::Raster;
   int64_t visibleDraws = -1;  // raster G-buffer draws after culling (-1: traced primaries)

@@ -48,11 +48,11 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   // A cut (the first frame of a run, a jump of the camera, or a listed frame) restarts every history.
   const bool cut = f == 0 || control.cut || isCameraCut(r.prevCamera, camera) ||
                    std::find(s.cuts.begin(), s.cuts.end(), f) != s.cuts.end();
-  if (cut || !taaHistory.valid) taaFrames = 0;
+  histories.beginFrame(f, cut);
   const glm::vec2 jitter = s.taa ? jitterNdc(f, s.width, s.height) : glm::vec2(0.0f);
   r.prevClipFromWorld = writeConstants(s, camera, jitter, cut ? nullptr : &r.prevClipFromWorld);
   r.prevCamera = camera;
-  graph::RenderGraph graph(&ctx, &transients);
+  graph::RenderGraph graph(&ctx, &transients, &histories);
   const FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, gpu.bindless->set()};
   bool moving = s.cameraPath || control.moving;
   {
@@ -71,13 +71,16 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
     const RasterFrameOutput o = raster.record(graph, in, gb, scene, camera, shadowLights());
     images = {o.visibility, o.visibility, o.specular, o.specular, o.ao, o.ao, o.indirect, o.indirect, o.hdr};
   } else {
-    images = recordHybrid(graph, in, gb, camera, f, moving, cut);
+    images = recordHybrid(graph, in, gb, camera, moving);
   }
   graph::ImageHandle hdr = images.hdr;
-  if (s.taa)
-    hdr = resolveTaa(graph, in,
-                     {hdr, gb.depth, taaHistory.previous(graph, "taa-history", f),
-                      taaHistory.next(graph, "taa-history", f), gb.motion, taaFrames});
+  if (s.taa) {
+    const graph::RenderGraph::History taa = graph.history(
+        "taa-history", {kTaaHistoryFormat, s.width, s.height, 1,
+                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+        kRadianceImage);
+    hdr = resolveTaa(graph, in, {hdr, gb.depth, taa.previous, taa.next, gb.motion, taa.frames});
+  }
   images.hdr = hdr;
   graph::ImageHandle ldr = tonemap(graph, in, hdr, {s.tonemap, s.seed});
   if (control.present)
@@ -88,7 +91,9 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
     graph.addPass("output", [&](graph::PassBuilder& b) {
       b.read(ldr, graph::Use::TransferSrc);
       b.sideEffect();
+      b.kind(graph::PassKind::Utility);
     }, [](graph::PassContext&) {});
+  if (f == 0 && !s.aovs.empty()) r.failure = checkAovs(graph, gb, images);
   if (control.readback) addReadbacks(graph, gb, images, ldr);
 
   VkCommandBuffer cmd = commands.begin();
@@ -98,17 +103,18 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   const double cpuMs = msSince(frameStart);
   ctx.wait(submitted);
   const double wallMs = msSince(frameStart);
-  for (History* h : {&surfaceHistory, &shadowHistory}) h->valid = true;
+  histories.endFrame();
   const bool measured = f >= s.warmupFrames || s.warmupFrames >= s.frames;  // never an empty sample
   double gpuMs = 0;
-  for (auto& t : timers.read()) {
-    if (t.name.rfind("readback", 0) == 0 || t.name.rfind("host-visible", 0) == 0 || t.name.rfind("output", 0) == 0)
-      continue;
-    stats.passes.emplace_back(t.name, t.ms);
-    if (t.name.rfind("raw-", 0) != 0) gpuMs += t.ms;  // raw-rate passes are not part of the frame
-    if (!measured) continue;
-    if (!r.passTimes.count(t.name)) r.passOrder.push_back(t.name);
-    r.passTimes[t.name].push_back(t.ms);
+  for (auto& t : graph.readTimings(timers)) {
+    if (!t.info.reported()) continue;
+    if (t.info.kind == graph::PassKind::Frame) gpuMs += t.ms;  // raw-rate twins are not part of the frame
+    if (measured) {
+      if (!r.passTimes.count(t.name)) r.passOrder.push_back(t.name);
+      r.passTimes[t.name].push_back(t.ms);
+      r.passInfo[t.name] = t.info;
+    }
+    stats.passes.push_back(std::move(t));
   }
   stats.gpuMs = gpuMs;
   if (measured) {
@@ -117,10 +123,6 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
     out.frameWallMs.push_back(wallMs);
   }
   ctx.collectGarbage();
-  if (s.taa) {
-    taaHistory.valid = true;
-    ++taaFrames;
-  }
   stats.primaryUsed = out.primaryUsed;
   out.visibleDraws = stats.visibleDraws = out.primaryUsed == Primary::Raster ? int64_t(visibleDraws(gpu)) : -1;
   out.totalDraws = uint32_t(gpu.draws.size());
@@ -129,61 +131,87 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
 }
 
 FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                         const scene::Camera& camera, uint32_t f, bool moving, bool cut) {
+                                         const scene::Camera& camera, bool moving) {
   const RenderSettings& s = run->settings;
+  // Off means gone: an effect that is switched off or has nothing to do (no shadowed light, no
+  // surface smooth or transmissive enough to trace) records no pass and no image; lighting reads
+  // the neutral value in its place (render/neutral_images.h).
+  const uint32_t lights = shadowLights();
+  const bool ao = aoInShadowImage(s), indirect = indirectOn(s), specularPass = specularOn(s);
+  const bool denoise = s.denoise && (lights > 0 || ao || specularPass || indirect || manyLights);
   FrameImages o;
-  // Every run starts without history, and so does a camera cut; while the camera or an object
-  // moves, the denoisers keep short histories.
-  const TemporalState temporal{moving, f == 0 || cut || !surfaceHistory.valid};
-  const DenoiseInputs dn{pipelines.denoise, nearest.handle(), in.size};
-  const SurfacePair surface{writeSurface(graph, dn, gb.depth, gb.normals, gb.id, gb.material,
-                                         surfaceHistory.next(graph, "surface", f), camera.zNear, camera.zFar),
-                            surfaceHistory.previous(graph, "surface", f)};
-  const graph::ImageHandle motion = gb.motion;
+  const graph::ImageHandle white = neutral.white(graph), black = neutral.black(graph);
+  o.shadowRaw = o.shadow = o.aoRaw = o.ao = white;
+  o.specularRaw = o.specular = o.indirectRaw = o.indirect = black;
 
-  // AO on: rt-ao fills the shadow image's last layer, and one shadow-denoiser run (one guide fetch
-  // per tap, one history) takes the lights and AO. AO off: its raw image is constant (1) and goes
-  // to lighting as is.
-  const bool aoShared = aoInShadowImage(s);
-  o.shadowRaw = traceShadows(graph, in, gb, shadowLights(), aoShared ? 1u : 0u);
-  o.aoRaw = aoShared ? traceAo(graph, in, gb, o.shadowRaw) : traceAo(graph, in, gb);
-  o.aoLayer = aoShared ? shadowLights() : 0u;
+  // The surface (depth, normal, id) the denoisers test disocclusions against, and the quarter-rate
+  // indirect fill its neighbours' weights: last frame's is a history, kept only while denoising.
+  // Every run starts without history, and so does a camera cut (the history store resets them all),
+  // and a history that is new (an effect just switched on, a resize); while the camera or an
+  // object moves, the denoisers keep short histories.
+  const DenoiseInputs dn{pipelines.denoise, nearest.handle(), in.size};
+  const graph::ImageHandle motion = gb.motion;
+  graph::RenderGraph::History surfaceHistory;
+  SurfacePair surface;
+  if (denoise || indirectQuarter(s)) {
+    if (denoise)
+      surfaceHistory = graph.history("surface", surfaceDesc(in.size));
+    else
+      surfaceHistory.next = graph.createImage("surface", surfaceDesc(in.size));
+    surface = {writeSurface(graph, dn, gb.depth, gb.normals, gb.id, gb.material, surfaceHistory.next, camera.zNear,
+                            camera.zFar),
+               surfaceHistory.previous};
+  }
+  auto temporalFor = [&](uint32_t frames) { return TemporalState{moving, surfaceHistory.frames == 0 || frames == 0}; };
+  // An SVGF signal's colour and moments histories ("<name>-history", "<name>-moments").
+  auto svgf = [&](const std::string& name, graph::ImageHandle raw) {
+    if (!denoise) return raw;
+    const graph::RenderGraph::History color = graph.history(name + "-history", svgfColorHistoryDesc(in.size), kRadianceImage);
+    const graph::RenderGraph::History moments = graph.history(name + "-moments", svgfMomentsHistoryDesc(in.size));
+    return denoiseRadiance(graph, dn, name == "specular" ? "reflection" : name, surface, motion, raw,
+                           {color.previous, color.next}, {moments.previous, moments.next},
+                           temporalFor(std::min(color.frames, moments.frames)))
+        .denoised;
+  };
+
+  // With shadowed lights and AO, rt-ao fills the shadow image's last layer, and one shadow-denoiser
+  // run (one guide fetch per tap, one history) takes the lights and AO; AO alone has an image of
+  // its own. Many-light mode shadows no layer: its direct light is a pass of its own.
+  if (lights > 0) {
+    o.shadowRaw = traceShadows(graph, in, gb, lights, ao ? 1u : 0u);
+    if (ao) o.aoRaw = traceAo(graph, in, gb, o.shadowRaw);
+  } else if (ao) {
+    o.aoRaw = traceAo(graph, in, gb);
+  }
+  o.aoLayer = ao ? lights : 0u;
+  o.shadow = o.shadowRaw;
+  o.ao = o.aoRaw;
+  if (denoise && (lights > 0 || ao)) {
+    const graph::ImageHandle raw = lights > 0 ? o.shadowRaw : o.aoRaw;
+    const graph::RenderGraph::History history =
+        graph.history("shadow-history", shadowHistoryDesc(in.size, lights + (ao ? 1u : 0u)));
+    const graph::ImageHandle denoised =
+        denoiseShadows(graph, dn, surface, motion, raw, {history.previous, history.next}, temporalFor(history.frames))
+            .denoised;
+    if (lights > 0) o.shadow = denoised;
+    if (ao) o.ao = denoised;
+  }
   if (s.rawRays) {
     if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
     traceRawPrimary(graph, in, *rawPipelines);
-    traceRawShadows(graph, in, gb, shadowLights(), *rawPipelines);
-    o.rawTwins = traceRawTwins(graph, in, gb, manyLights, indirectQuarter(s), *rawPipelines);
+    traceRawShadows(graph, in, gb, lights, *rawPipelines);
+    o.rawTwins = traceRawTwins(graph, in, gb, {ao, manyLights, indirect, specularPass}, indirectQuarter(s),
+                               lightsPerHit(), *rawPipelines);
   }
-  // Many-light mode traces no shadow layers: lighting reads none, so only AO's needs denoising.
-  o.shadow = o.shadowRaw;
-  o.ao = o.aoRaw;
-  if (shadowLights() > 0 || aoShared) {
-    o.shadow = denoiseShadows(graph, dn, surface, motion, o.shadowRaw,
-                              {shadowHistory.previous(graph, "shadow-history", f),
-                               shadowHistory.next(graph, "shadow-history", f)},
-                              temporal)
-                   .denoised;
-    if (aoShared) o.ao = o.shadow;
+  if (specularPass) {
+    o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit());
+    o.specular = svgf("specular", o.specularRaw);
   }
-  o.specularRaw = traceSpecular(graph, in, gb);
-  o.specular = denoiseRadiance(graph, dn, "reflection", surface, motion, o.specularRaw,
-                               specularHistory.colorPair(graph, "specular", f),
-                               specularHistory.momentsPair(graph, "specular", f), temporal)
-                   .denoised;
-  graph::ImageHandle direct;
-  if (manyLights)
-    direct = denoiseRadiance(graph, dn, "direct", surface, motion, traceDirect(graph, in, gb),
-                             directHistory.colorPair(graph, "direct", f), directHistory.momentsPair(graph, "direct", f),
-                             temporal)
-                 .denoised;
-  // When an effect is off its raw image is constant and goes to lighting as is.
-  o.indirectRaw = traceIndirect(graph, in, gb, surface.current, indirectQuarter(s));
-  o.indirect = o.indirectRaw;
-  if (indirectOn(s))
-    o.indirect = denoiseRadiance(graph, dn, "indirect", surface, motion, o.indirectRaw,
-                                 indirectHistory.colorPair(graph, "indirect", f),
-                                 indirectHistory.momentsPair(graph, "indirect", f), temporal)
-                     .denoised;
+  const graph::ImageHandle direct = manyLights ? svgf("direct", traceDirect(graph, in, gb)) : black;
+  if (indirect) {
+    o.indirectRaw = traceIndirect(graph, in, gb, surface.current, indirectQuarter(s));
+    o.indirect = svgf("indirect", o.indirectRaw);
+  }
   o.hdr = shadeLighting(graph, in, gb, {o.shadow, o.specular, o.ao, o.indirect, direct});
   return o;
 }

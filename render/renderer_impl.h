@@ -15,8 +15,8 @@
 
 #include "graph/graph.h"
 #include "render/gpu_scene.h"
-#include "render/history.h"
 #include "render/instance_motion.h"
+#include "render/neutral_images.h"
 #include "render/passes/denoise.h"
 #include "render/passes/passes.h"
 #include "render/path_tracer.h"
@@ -56,29 +56,15 @@ struct Renderer::Impl {
   graph::TransientPool transients;
   rhi::CommandList commands;
   rhi::TimestampPool timers;
-  // Temporal state of the denoisers: the surface (disocclusion tests), shadow and AO means, SVGF
-  // colour and moments of the reflections, the indirect light and the many-light direct light;
-  // and TAA's resolved colour.
-  History surfaceHistory, shadowHistory, taaHistory;  // shadowHistory: the lights' and AO's layers
-  struct SvgfHistory {
-    History color, moments;
-    // Full size only while the signal exists (a 1×1 stand-in otherwise, never read).
-    void ensure(rhi::Context& ctx, VkExtent2D size, bool used, const std::string& name) {
-      const VkExtent2D s = used ? size : VkExtent2D{1, 1};
-      color.ensure(ctx, svgfColorHistoryDesc(s), name + "-history");
-      moments.ensure(ctx, svgfMomentsHistoryDesc(s), name + "-moments");
-    }
-    HistoryPair colorPair(graph::RenderGraph& g, const std::string& name, uint32_t f) {
-      return {color.previous(g, name + "-history", f), color.next(g, name + "-history", f)};
-    }
-    HistoryPair momentsPair(graph::RenderGraph& g, const std::string& name, uint32_t f) {
-      return {moments.previous(g, name + "-moments", f), moments.next(g, name + "-moments", f)};
-    }
-  } specularHistory, indirectHistory, directHistory;
+  // Temporal histories of the denoisers (the surface for disocclusion tests, shadow and AO means,
+  // SVGF colour and moments of reflections, indirect and many-light direct light) and of TAA: graph
+  // resources that outlive each frame's graph (graph/history.h).
+  graph::HistoryStore histories;
+  NeutralImages neutral;  // what lighting reads for an effect that records no pass
+  const SpecularSurfaces specular;  // whether any material is smooth or transmissive enough to trace
   std::optional<RawRayPipelines> rawPipelines;  // created on the first render with rawRays
   RasterFrame raster;  // the raster mode's passes (render/raster_frame.h)
   uint32_t frameIndex = 0;
-  uint32_t taaFrames = 0;  // frames in the TAA history since its last reset
   InstanceMotion motion;  // animation and edits (render/instance_motion.h)
   bool manyLights = false;  // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
   std::unique_ptr<PathTracer> pathTracer;  // created by the first path-traced render
@@ -97,7 +83,7 @@ struct Renderer::Impl {
     struct AovReadback {
       std::string name;
       VkFormat format;
-      uint32_t layer;
+      uint32_t width, height, layer;
       rhi::Buffer buffer;
       bool radiance = false;  // pre-exposed light (lib/frame.glsl): divided by the exposure on the host
     };
@@ -105,6 +91,8 @@ struct Renderer::Impl {
     std::deque<graph::ResourceState> aovStates;  // stable addresses for the graph
     std::map<std::string, std::vector<double>> passTimes;
     std::vector<std::string> passOrder;
+    std::map<std::string, graph::PassInfo> passInfo;  // what each reported pass declared
+    std::optional<Error> failure;  // set by a frame (an unknown AOV): the run ends with it
   };
   std::optional<Run> run;
   // The presentable copy of the last frame's LDR image (FrameControl::present).
@@ -122,9 +110,18 @@ struct Renderer::Impl {
   float aoRadius(const RenderSettings& s) const;
   int32_t findInstance(const std::string& name) const;
   uint32_t shadowLights() const { return manyLights ? 0u : std::min(gpu.lightCount, gpu::kMaxShadowLights); }
+  // Lights shaded (each with a shadow ray) at a bounce hit: all of them, or one picked by importance.
+  uint32_t lightsPerHit() const { return manyLights ? 1u : gpu.lightCount; }
   // The hybrid with AO traces it into the shadow visibility image's layer shadowLights() and
   // denoises it with the lights in one shadow-denoiser run (renderer_frame.cpp recordHybrid).
   static bool aoInShadowImage(const RenderSettings& s) { return s.mode != Mode::Raster && s.ao; }
+  // Whether any surface of the scene gets traced specular light (lib/specular_weight.glsl
+  // tracedSpecularWeight > 0, with a margin for the G-buffer's 8-bit roughness): otherwise the
+  // hybrid records no specular pass.
+  bool specularOn(const RenderSettings& s) const {
+    return specular.transmission ||
+           specular.minRoughness <= std::max(s.mirrorRoughness, s.glossyThreshold + gpu::kGlossyBlend) + 1.0f / 255.0f;
+  }
   // Rays of the hybrid's reflection/refraction loop after the G-buffer surface (RenderSettings::maxDepth).
   static uint32_t specularBounces(const RenderSettings& s) {
     return std::clamp(s.maxDepth > 1 ? s.maxDepth - 1 : 1u, 1u, gpu::kMaxSpecularBounces);
@@ -134,7 +131,6 @@ struct Renderer::Impl {
   // Returns this frame's unjittered clipFromWorld.
   glm::mat4 writeConstants(const RenderSettings& s, const scene::Camera& cam, glm::vec2 jitter,
                            const glm::mat4* prevClipFromWorld);
-  void ensureHistory(const RenderSettings& s);
   // Times one G-buffer producer alone: a warm-up frame, then a measured one.
   double timeProducer(const RenderSettings& s, Primary p);
   // The camera at `frame` along the scene's path: linear between keys, clamped at the ends.
@@ -150,11 +146,21 @@ struct Renderer::Impl {
   FrameStats renderFrame(const FrameControl& control);
   // The ray-traced effects and their denoisers, then lighting.
   FrameImages recordHybrid(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                           const scene::Camera& camera, uint32_t f, bool moving, bool cut);
+                           const scene::Camera& camera, bool moving);
 
   // --- renderer_output.cpp: AOVs, readback, statistics
   // Readback of the LDR and HDR images and of the run's AOVs (RenderSettings::aovs) in this frame.
   void addReadbacks(graph::RenderGraph& graph, const GBuffer& gb, const FrameImages& images, graph::ImageHandle ldr);
+  // What `--aov NAME` reads this frame: an alias (aovNames()) or any graph image, "NAME[:LAYER]".
+  struct AovSource {
+    graph::ImageHandle image;
+    uint32_t layer = 0;
+  };
+  std::optional<AovSource> resolveAov(const graph::RenderGraph& graph, const GBuffer& gb, const FrameImages& images,
+                                      const std::string& name) const;
+  // The first frame's check of the requested AOVs: a name that is neither an alias nor an image of
+  // the frame fails the run before it renders the rest.
+  std::optional<Error> checkAovs(const graph::RenderGraph& graph, const GBuffer& gb, const FrameImages& images) const;
   RenderOutput endRun();
   // The images of the last frame rendered with readback, and the scene's statistics.
   void readImages(RenderOutput& out);

@@ -50,14 +50,11 @@ struct KeyEdges {
   }
 };
 
-// Rays per frame, estimated from the passes that ran: one ray per pixel per ray-generation pass
-// and per shadowed light (the traced G-buffer's primaries included).
-uint64_t estimateRays(const render::FrameStats& stats, uint32_t pixels, uint32_t shadowLayers) {
+// Rays launched this frame: what the frame's passes declared (graph::PassInfo::rays; twins excluded).
+uint64_t frameRays(const render::FrameStats& stats) {
   uint64_t rays = 0;
-  for (const auto& [name, ms] : stats.passes) {
-    if (name == "rt-shadows") rays += uint64_t(pixels) * std::max(1u, shadowLayers);
-    else if (name.rfind("rt-", 0) == 0 || name == "gbuffer-traced") rays += pixels;
-  }
+  for (const auto& p : stats.passes)
+    if (p.info.kind == graph::PassKind::Frame) rays += p.info.rays;
   return rays;
 }
 
@@ -172,7 +169,7 @@ class ViewerSession {
       if (restart_ && !beginRun(size)) continue;
       const bool lastFrame = o_.frames && frame_ + 1 == o_.frames;
       const bool shoot = (lastFrame && !o_.screenshot.empty()) || st_.screenshot;
-      recordStats(renderFrame(moved, shoot), size);
+      recordStats(renderFrame(moved, shoot));
       Image8 captured;
       present(shoot ? &captured : nullptr);
       if (shoot)
@@ -340,10 +337,11 @@ class ViewerSession {
     return stats;
   }
 
-  void recordStats(const render::FrameStats& stats, VkExtent2D size) {
-    st_.passes = stats.passes;
+  void recordStats(const render::FrameStats& stats) {
+    st_.passes.clear();
+    for (const auto& p : stats.passes) st_.passes.emplace_back(p.name, p.ms);
     recordHistory(st_.gpuHistory, float(stats.gpuMs));
-    st_.raysPerFrame = estimateRays(stats, size.width * size.height, std::min(8u, st_.settings.shadowLights));
+    st_.raysPerFrame = frameRays(stats);
     st_.deviceBytes = renderer_->deviceBytesUsed();
   }
 

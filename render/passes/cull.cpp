@@ -182,6 +182,7 @@ void readbackCullStats(graph::RenderGraph& graph, const FrameInputs& in, const C
         b.read(culled.counts, graph::Use::TransferSrc);
         b.read(culled.visibility, graph::Use::TransferSrc);
         b.write(readback, graph::Use::TransferDst);
+        b.kind(graph::PassKind::Readback);
       },
       [culled, readback, rows = std::max(c.drawCount, 1u)](graph::PassContext& pc) {
         const VkBufferCopy counts{0, 0, kCountBytes};
@@ -194,6 +195,7 @@ void readbackCullStats(graph::RenderGraph& graph, const FrameInputs& in, const C
       [&](graph::PassBuilder& b) {
         b.read(readback, graph::Use::HostRead);
         b.sideEffect();
+        b.kind(graph::PassKind::Readback);
       },
       [](graph::PassContext&) {});
 }

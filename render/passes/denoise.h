@@ -1,6 +1,6 @@
 #pragma once
 // The denoisers of the hybrid frame (docs/architecture.md §3, passes 3 and 5): reusable compute passes over
-// the G-buffer, with temporal history in ping-pong History images owned by the caller.
+// the G-buffer, with temporal history in the caller's graph histories (RenderGraph::history).
 //   writeSurface       the denoisers' compact view of the G-buffer (kept a frame longer)
 //   denoiseShadows     per-light visibility: temporal running mean + 3 à-trous iterations (docs/techniques.md §11)
 //   denoiseRadiance    SVGF for a radiance signal (reflections; later indirect diffuse) (docs/techniques.md §14)
@@ -42,7 +42,7 @@ inline constexpr VkFormat kSvgfColorHistoryFormat = VK_FORMAT_R32G32B32A32_SFLOA
 inline constexpr VkFormat kSvgfMomentsHistoryFormat = VK_FORMAT_R32G32_SFLOAT;
 inline constexpr VkFormat kSvgfWorkingFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
-// Image descriptions for the caller's History objects.
+// Image descriptions for the caller's histories (RenderGraph::history).
 rhi::ImageDesc surfaceDesc(VkExtent2D size);
 rhi::ImageDesc shadowHistoryDesc(VkExtent2D size, uint32_t lights);
 rhi::ImageDesc svgfColorHistoryDesc(VkExtent2D size);
@@ -82,7 +82,7 @@ struct HistoryPair {
 
 // A. The surface image from the G-buffer (depth D32 or R32F reversed Z, normals, id, material: .r
 // perceptual roughness, ≤ kSharpRoughness marks the texel sharp for SVGF), written into `out`
-// (kSurfaceFormat, usually a History's next image). zNear/zFar: the camera's planes.
+// (kSurfaceFormat, usually a history's next image). zNear/zFar: the camera's planes.
 graph::ImageHandle writeSurface(graph::RenderGraph& graph, const DenoiseInputs& in, graph::ImageHandle depth,
                                 graph::ImageHandle normals, graph::ImageHandle id, graph::ImageHandle material,
                                 graph::ImageHandle out, float zNear, float zFar);

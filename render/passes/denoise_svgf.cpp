@@ -2,6 +2,7 @@
 // luminance moments with the variance estimate in the same pass, 5 edge-aware à-trous iterations
 // at steps 1 .. 16: 6 dispatches.
 #include "render/passes/denoise.h"
+#include "render/passes/passes.h"
 #include "shaders/shared/denoise.h"
 
 namespace rayster::render {
@@ -18,7 +19,8 @@ void dispatch(VkCommandBuffer cmd, const rhi::Pipeline& pipe, VkExtent2D size, c
 graph::ImageHandle createSvgfImage(graph::RenderGraph& graph, VkExtent2D size, const std::string& name) {
   return graph.createImage(name,
                            {kSvgfWorkingFormat, size.width, size.height, 1,
-                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+                           kRadianceImage);
 }
 
 graph::ImageHandle svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& in, const std::string& name,

@@ -16,7 +16,8 @@ constexpr VkImageUsageFlags kTargetUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
 // same images to either.
 GBuffer createGBufferTargets(graph::RenderGraph& graph, VkExtent2D size, bool traced) {
   auto target = [&](const char* name, VkFormat format) {
-    return graph.createImage(name, {format, size.width, size.height, 1, kTargetUsage});
+    const bool light = std::string_view(name) == "gbuffer-emissive";  // emission is pre-exposed
+    return graph.createImage(name, {format, size.width, size.height, 1, kTargetUsage}, light ? kRadianceImage : 0u);
   };
   GBuffer gb;
   gb.depth = traced ? graph.createImage("gbuffer-depth-traced",

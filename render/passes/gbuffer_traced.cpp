@@ -14,6 +14,7 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
       [&](graph::PassBuilder& b) {
         for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion, gb.specular})
           b.write(h, graph::Use::StorageWriteRayTracing);
+        b.rays(uint64_t(in.size.width) * in.size.height, true);  // one primary ray per pixel, always traced
       },
       [gb, &in](graph::PassContext& pc) {
         const rhi::RayTracingPipeline& pipe = in.pipelines.gbufferTraced;

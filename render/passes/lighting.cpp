@@ -12,7 +12,8 @@ graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& i
   const graph::ImageHandle directOrUnused = direct.valid() ? direct : specular;
   graph::ImageHandle hdr = graph.createImage(
       name == "lighting" ? "hdr" : name + "-hdr", {kHdrFormat, in.size.width, in.size.height, 1,
-              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+      kRadianceImage);
   graph.addPass(
       name,
       [&](graph::PassBuilder& b) {

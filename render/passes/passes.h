@@ -21,6 +21,10 @@ struct GpuScene;
 struct Pipelines;
 
 // What every pass may read without declaring it: immutable for the whole frame.
+// Graph image tags (graph::RenderGraph::createImage): the image holds pre-exposed light
+// (lib/frame.glsl), which an AOV of it divides back to the scene's units.
+inline constexpr uint32_t kRadianceImage = 1u;
+
 struct FrameInputs {
   const Pipelines& pipelines;
   const GpuScene& scene;
@@ -70,13 +74,20 @@ void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBu
 struct RawTwinImages {
   graph::ImageHandle ao, direct, indirect, specular;
 };
+// The twins of the effects that record a pass this frame (AO on, many-light direct light, indirect
+// on, specular surfaces in the scene).
+struct RawTwinEffects {
+  bool ao, direct, indirect, specular;
+};
 // `indirectQuarter`: as traceIndirect's `quarter` (raw-rt-indirect launches the same grid).
-RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, bool manyLights,
-                            bool indirectQuarter, const RawRayPipelines& raw);
+RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, RawTwinEffects effects,
+                            bool indirectQuarter, uint32_t lightsPerHit, const RawRayPipelines& raw);
 // Denoised by denoiseShadows() (render/passes/denoise.h).
 
 // Reflections and refractions of mirror, metal and glass pixels (RGBA16F radiance, 0 elsewhere).
-graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
+// `bounces` (FrameConstants::maxSpecularBounces) and `lightsPerHit` only count its rays (PassInfo::rays).
+graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t bounces,
+                                 uint32_t lightsPerHit);
 // Denoised by denoiseRadiance() (render/passes/denoise.h).
 
 // Ambient occlusion (R16F array, 1 unoccluded), 1 sample per pixel; 1 everywhere when
@@ -91,6 +102,9 @@ graph::ImageHandle traceAo(graph::RenderGraph& graph, const FrameInputs& in, con
 // launch), the rest filled by "rt-indirect-fill" guided by `surface` (the denoisers' surface image).
 graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                  graph::ImageHandle surface, bool quarter);
+// rt-indirect's launch: the image, or at quarter rate one invocation per 2×2 block; and its size in invocations.
+VkExtent2D indirectLaunchSize(VkExtent2D size, bool quarter);
+uint64_t indirectLaunch(VkExtent2D size, bool quarter);
 
 // Many lights: direct light from one importance-picked light per pixel, with its shadow ray
 // (RGBA16F radiance).

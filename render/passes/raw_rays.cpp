@@ -20,17 +20,21 @@ constexpr VkImageUsageFlags kScratchUsage = VK_IMAGE_USAGE_STORAGE_BIT;
 
 // One twin: a full-screen launch of `pipe` reading G-buffer images at their bindings and writing
 // one R16F image (readable as an AOV, for the tests that compare it with its pass) at `outBinding`.
-graph::ImageHandle traceTwin(graph::RenderGraph& graph, const FrameInputs& in, const char* pass, const char* image,
-                             std::vector<std::pair<uint32_t, graph::ImageHandle>> reads, uint32_t outBinding,
-                             const rhi::RayTracingPipeline& pipe, bool quarterLaunch = false) {
+// `twinOf` names the pass it replays; `rays` its launched rays.
+graph::ImageHandle traceTwin(graph::RenderGraph& graph, const FrameInputs& in, const char* pass, const char* twinOf,
+                             uint64_t rays, const char* image, std::vector<std::pair<uint32_t, graph::ImageHandle>> reads,
+                             uint32_t outBinding, const rhi::RayTracingPipeline& pipe, bool quarterLaunch = false) {
   graph::ImageHandle out = graph.createImage(
-      image, {kVisibilityFormat, in.size.width, in.size.height, 1, kScratchUsage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+      image, {kVisibilityFormat, in.size.width, in.size.height, 1, kScratchUsage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+      std::string_view(image) == "raw-ao" ? 0u : kRadianceImage);
   graph.addPass(
       pass,
       [&](graph::PassBuilder& b) {
         for (const auto& r : reads) b.read(r.second, graph::Use::SampledRayTracing);
         b.write(out, graph::Use::StorageWriteRayTracing);
         b.sideEffect();
+        b.twinOf(twinOf);
+        b.rays(rays);
       },
       [reads, out, outBinding, quarterLaunch, &in, &pipe](graph::PassContext& pc) {
         vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.handle());
@@ -39,8 +43,8 @@ graph::ImageHandle traceTwin(graph::RenderGraph& graph, const FrameInputs& in, c
         for (const auto& r : reads) w.sampledImage(r.first, pc.image(r.second).view(), in.nearest.handle());
         w.storageImage(outBinding, pc.image(out).view()).push(pc.cmd, pipe);
         bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.layout());
-        const uint32_t shift = quarterLaunch ? 1u : 0u;  // one invocation per 2×2 block
-        pipe.trace(pc.cmd, (in.size.width + shift) >> shift, (in.size.height + shift) >> shift);
+        const VkExtent2D launch = indirectLaunchSize(in.size, quarterLaunch);
+        pipe.trace(pc.cmd, launch.width, launch.height);
       });
   return out;
 }
@@ -54,6 +58,8 @@ void traceRawPrimary(graph::RenderGraph& graph, const FrameInputs& in, const Raw
       [&](graph::PassBuilder& b) {
         b.write(hit, graph::Use::StorageWriteRayTracing);
         b.sideEffect();
+        b.twinOf("gbuffer-traced");
+        b.rays(uint64_t(in.size.width) * in.size.height, true);
       },
       [hit, &in, &raw](graph::PassContext& pc) {
         const rhi::RayTracingPipeline& pipe = raw.primary;
@@ -80,6 +86,8 @@ void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBu
         b.read(gb.normals, graph::Use::SampledRayTracing);
         b.write(vis, graph::Use::StorageWriteRayTracing);
         b.sideEffect();
+        b.twinOf("rt-shadows");
+        b.rays(uint64_t(in.size.width) * in.size.height * lights);
       },
       [gb, vis, lights, &in, &raw](graph::PassContext& pc) {
         const rhi::RayTracingPipeline& pipe = raw.shadows;
@@ -96,15 +104,21 @@ void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBu
       });
 }
 
-RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, bool manyLights,
-                            bool indirectQuarter, const RawRayPipelines& raw) {
+RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, RawTwinEffects effects,
+                            bool indirectQuarter, uint32_t lightsPerHit, const RawRayPipelines& raw) {
   RawTwinImages t;
-  t.ao = traceTwin(graph, in, "raw-rt-ao", "raw-ao", {{2, gb.depth}, {3, gb.normals}}, 4, raw.ao);
-  if (manyLights)
-    t.direct = traceTwin(graph, in, "raw-rt-direct", "raw-direct", {{2, gb.depth}, {3, gb.normals}}, 4, raw.direct);
-  t.indirect = traceTwin(graph, in, "raw-rt-indirect", "raw-indirect", {{2, gb.depth}, {3, gb.normals}}, 4, raw.indirect,
-                          indirectQuarter);
-  t.specular = traceTwin(graph, in, "raw-rt-specular", "raw-specular",
+  const uint64_t pixels = uint64_t(in.size.width) * in.size.height;
+  if (effects.ao)
+    t.ao = traceTwin(graph, in, "raw-rt-ao", "rt-ao", pixels, "raw-ao", {{2, gb.depth}, {3, gb.normals}}, 4, raw.ao);
+  if (effects.direct)
+    t.direct = traceTwin(graph, in, "raw-rt-direct", "rt-direct", pixels, "raw-direct", {{2, gb.depth}, {3, gb.normals}},
+                         4, raw.direct);
+  if (effects.indirect)
+    t.indirect = traceTwin(graph, in, "raw-rt-indirect", "rt-indirect", indirectLaunch(in.size, indirectQuarter) * 2,
+                         "raw-indirect", {{2, gb.depth}, {3, gb.normals}}, 4, raw.indirect, indirectQuarter);
+  // Only the first bounce: its ray and a shadow ray per light shaded at the hit.
+  if (effects.specular)
+    t.specular = traceTwin(graph, in, "raw-rt-specular", "rt-specular", pixels * (1u + lightsPerHit), "raw-specular",
                          {{2, gb.depth}, {3, gb.normals}, {4, gb.albedo}, {5, gb.material}, {7, gb.emissive},
                           {8, gb.specular}},
                          6,

@@ -20,6 +20,7 @@ graph::ImageHandle traceAo(graph::RenderGraph& graph, const FrameInputs& in, con
         b.read(gb.depth, graph::Use::SampledRayTracing);
         b.read(gb.normals, graph::Use::SampledRayTracing);
         b.write(ao, graph::Use::StorageWriteRayTracing);
+        b.rays(uint64_t(in.size.width) * in.size.height);  // one occlusion ray per pixel; none on the sky
       },
       [gb, ao, &in](graph::PassContext& pc) {
         const rhi::RayTracingPipeline& pipe = in.pipelines.ao;

@@ -8,13 +8,15 @@ namespace rayster::render {
 graph::ImageHandle traceDirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb) {
   graph::ImageHandle out = graph.createImage(
       "direct-raw", {kRadianceFormat, in.size.width, in.size.height, 1,
-                     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+                     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+      kRadianceImage);
   graph.addPass(
       "rt-direct",
       [&](graph::PassBuilder& b) {
         for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, gb.specular})
           b.read(h, graph::Use::SampledRayTracing);
         b.write(out, graph::Use::StorageWriteRayTracing);
+        b.rays(uint64_t(in.size.width) * in.size.height);  // one shadow ray to the picked light per pixel
       },
       [gb, out, &in](graph::PassContext& pc) {
         const rhi::RayTracingPipeline& pipe = in.pipelines.direct;

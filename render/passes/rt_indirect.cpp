@@ -8,17 +8,28 @@
 
 namespace rayster::render {
 
+VkExtent2D indirectLaunchSize(VkExtent2D size, bool quarter) {
+  const uint32_t shift = quarter ? 1u : 0u;  // one invocation per 2×2 block
+  return {(size.width + shift) >> shift, (size.height + shift) >> shift};
+}
+uint64_t indirectLaunch(VkExtent2D size, bool quarter) {
+  const VkExtent2D l = indirectLaunchSize(size, quarter);
+  return uint64_t(l.width) * l.height;
+}
+
 graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                  graph::ImageHandle surface, bool quarter) {
   graph::ImageHandle out = graph.createImage(
       "indirect-raw", {kRadianceFormat, in.size.width, in.size.height, 1,
-                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+      kRadianceImage);
   graph.addPass(
       "rt-indirect",
       [&](graph::PassBuilder& b) {
         b.read(gb.depth, graph::Use::SampledRayTracing);
         b.read(gb.normals, graph::Use::SampledRayTracing);
         b.write(out, graph::Use::StorageWriteRayTracing);
+        b.rays(indirectLaunch(in.size, quarter) * 2);  // a bounce ray and a shadow ray at its hit
       },
       [gb, out, quarter, &in](graph::PassContext& pc) {
         const rhi::RayTracingPipeline& pipe = in.pipelines.indirect;
@@ -31,8 +42,8 @@ graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& i
             .storageImage(4, pc.image(out).view())
             .push(pc.cmd, pipe);
         bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipe.layout());
-        const uint32_t shift = quarter ? 1u : 0u;
-        pipe.trace(pc.cmd, (in.size.width + shift) >> shift, (in.size.height + shift) >> shift);
+        const VkExtent2D launch = indirectLaunchSize(in.size, quarter);
+        pipe.trace(pc.cmd, launch.width, launch.height);
       });
   if (!quarter) return out;
   graph.addPass(

@@ -17,6 +17,7 @@ graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in
         b.read(gb.depth, graph::Use::SampledRayTracing);
         b.read(gb.normals, graph::Use::SampledRayTracing);
         b.write(vis, graph::Use::StorageWriteRayTracing);
+        b.rays(uint64_t(in.size.width) * in.size.height * lights);  // one per pixel and light; none on the sky
       },
       [gb, vis, lights, &in](graph::PassContext& pc) {
         const rhi::RayTracingPipeline& pipe = in.pipelines.shadows;

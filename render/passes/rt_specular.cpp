@@ -7,16 +7,21 @@
 
 namespace rayster::render {
 
-graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb) {
+graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t bounces,
+                                 uint32_t lightsPerHit) {
   graph::ImageHandle out = graph.createImage(
       "specular-raw", {kRadianceFormat, in.size.width, in.size.height, 1,
-                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+      kRadianceImage);
   graph.addPass(
       "rt-specular",
       [&](graph::PassBuilder& b) {
         for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, gb.specular})
           b.read(h, graph::Use::SampledRayTracing);
         b.write(out, graph::Use::StorageWriteRayTracing);
+        // Per pixel and bounce a ray and a shadow ray per light shaded at its hit: a bound, since
+        // most pixels are not specular and most paths end after a bounce.
+        b.rays(uint64_t(in.size.width) * in.size.height * bounces * (1u + lightsPerHit));
       },
       [gb, out, &in](graph::PassContext& pc) {
         const rhi::RayTracingPipeline& pipe = in.pipelines.specular;

@@ -9,7 +9,7 @@ RasterConstants rasterConstants(graph::RenderGraph& graph, const FrameInputs& in
                                        VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   RasterConstants c;
   c.ao = graph.createImage("raster-ao", {kVisibilityFormat, in.size.width, in.size.height, 1, kUsage, true});
-  c.zero = graph.createImage("raster-zero", {kRadianceFormat, in.size.width, in.size.height, 1, kUsage});
+  c.zero = graph.createImage("raster-zero", {kRadianceFormat, in.size.width, in.size.height, 1, kUsage}, kRadianceImage);
   graph.addPass(
       "raster-constants",
       [&](graph::PassBuilder& b) {
@@ -34,7 +34,8 @@ graph::ImageHandle screenSpaceSpecular(graph::RenderGraph& graph, const FrameInp
                                        graph::ImageHandle lit) {
   graph::ImageHandle out = graph.createImage(
       "ssr", {kRadianceFormat, in.size.width, in.size.height, 1,
-              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+      kRadianceImage);
   graph.addPass(
       "ssr",
       [&](graph::PassBuilder& b) {

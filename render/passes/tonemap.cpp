@@ -38,6 +38,7 @@ void readback(graph::RenderGraph& graph, graph::ImageHandle image, graph::Buffer
       [&](graph::PassBuilder& b) {
         b.read(image, graph::Use::TransferSrc);
         b.write(buffer, graph::Use::TransferDst);
+        b.kind(graph::PassKind::Readback);
       },
       [image, buffer](graph::PassContext& pc) {
         const rhi::Image& img = pc.image(image);
@@ -52,6 +53,7 @@ void readback(graph::RenderGraph& graph, graph::ImageHandle image, graph::Buffer
       "host-visible", [&](graph::PassBuilder& b) {
         b.read(buffer, graph::Use::HostRead);
         b.sideEffect();
+        b.kind(graph::PassKind::Readback);
       },
       [](graph::PassContext&) {});
 }

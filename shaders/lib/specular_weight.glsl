@@ -7,8 +7,7 @@
 // rougher hits end it, shaded here.
 const float kMirrorRoughness = 0.1;
 // First surfaces rougher than FrameConstants::glossyThreshold fade from traced glossy reflections to
-// the environment approximation over this much roughness, so no seam shows (docs/techniques.md §13).
-const float kGlossyBlend = 0.1;
+// the environment approximation over kGlossyBlend (shared/types.h), so no seam shows (docs/techniques.md §13).
 
 bool tracedSpecular(float roughness, float transmission) {
   return roughness <= kMirrorRoughness || transmission > 0.0;

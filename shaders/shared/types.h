@@ -31,6 +31,10 @@ RAYSTER_CONST uint kMaxShadowLights = 8u;  // one visibility layer each
 // of specular.rgen); RenderSettings::maxDepth picks 1..this, default kDefaultSpecularBounces.
 RAYSTER_CONST uint kMaxSpecularBounces = 8u;
 RAYSTER_CONST uint kDefaultSpecularBounces = 7u;  // the loop's historical bound (8 path vertices)
+// First surfaces rougher than FrameConstants::glossyThreshold fade from traced glossy reflections to
+// the environment approximation over this much roughness (lib/specular_weight.glsl); past
+// threshold + blend the specular pass traces nothing (render/gpu_scene.h SpecularSurfaces).
+RAYSTER_CONST float kGlossyBlend = 0.1;
 RAYSTER_CONST uint kDfgSize = 32u;         // split-sum DFG table, kDfgSize² texels (render/dfg.h)
 RAYSTER_CONST uint kBackgroundId = 0xFFFFFFFFu;
 RAYSTER_CONST uint kNoTexture = 0xFFFFFFFFu;

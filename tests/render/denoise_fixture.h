@@ -13,7 +13,7 @@
 
 #include "core/half.h"
 #include "graph/graph.h"
-#include "render/history.h"
+#include "graph/history.h"
 #include "render/passes/denoise.h"
 #include "render/passes/passes.h"
 #include "rhi/commands.h"
@@ -94,17 +94,15 @@ class Denoise : public ::testing::Test {
   }
 
   DenoiseInputs inputs() const { return {*pipes_, sampler_.handle(), kSize}; }
-  History& history(const rhi::ImageDesc& desc, const std::string& name) {
-    histories_.push_back(std::make_unique<History>());
-    histories_.back()->ensure(*ctx_, desc, name);
-    return *histories_.back();
-  }
 
  public:
   // One graph: uploads from the CPU, the passes under test, downloads to the CPU.
   class Frame {
    public:
-    explicit Frame(Denoise& t) : graph(t.ctx_.get(), &t.pool_), t_(t) {}
+    // Frames of one test follow each other: each reads the histories (graph/history.h) the last wrote.
+    explicit Frame(Denoise& t) : graph(t.ctx_.get(), &t.pool_, &t.histories_), t_(t) {
+      t.histories_.beginFrame(t.frames_, false);
+    }
     graph::RenderGraph graph;
 
     graph::ImageHandle upload(const std::string& name, VkFormat format, uint32_t layers, const void* data,
@@ -165,6 +163,8 @@ class Denoise : public ::testing::Test {
       VkCommandBuffer cmd = t_.commands_->begin();
       graph.execute(cmd, nullptr);
       t_.ctx_->wait(t_.commands_->submit());
+      t_.histories_.endFrame();
+      ++t_.frames_;
       for (auto& [buffer, bytes] : downloads_) std::memcpy(bytes->data(), buffer->mapped(), bytes->size());
     }
 
@@ -196,7 +196,8 @@ class Denoise : public ::testing::Test {
   rhi::Sampler sampler_;
   std::unique_ptr<rhi::CommandList> commands_;
   graph::TransientPool pool_;
-  std::vector<std::unique_ptr<History>> histories_;
+  graph::HistoryStore histories_;
+  uint32_t frames_ = 0;
 };
 
 // ---- decoding downloads ----

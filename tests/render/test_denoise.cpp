@@ -181,9 +181,6 @@ TEST_F(Denoise, ShadowLayersAreDenoisedIndependently) {
   constexpr uint32_t kAll = gpu::kMaxShadowDenoiseLayers;
   static_assert(kAll == gpu::kMaxShadowLights + 1);
   const ref::GBufferCpu g = makeGBuffer();
-  History& surfaceHistory = history(surfaceDesc(kSize), "surface");
-  History& allHistory = history(shadowHistoryDesc(kSize, kAll), "all");
-  History& pairHistory = history(shadowHistoryDesc(kSize, 2), "pair");
   for (uint32_t f = 0; f < 4; ++f) {
     std::vector<float> all = noise(kPixels * kAll, 700 + f);
     for (float& x : all) x = viaHalf(x);
@@ -191,18 +188,18 @@ TEST_F(Denoise, ShadowLayersAreDenoisedIndependently) {
     std::vector<float> pair(all.begin(), all.begin() + kPixels);
     pair.insert(pair.end(), all.end() - kPixels, all.end());
     Frame fr(*this);
-    const SurfacePair s{fr.surface("surface", g, surfaceHistory.next(fr.graph, "surface", f)),
-                        surfaceHistory.previous(fr.graph, "surface", f)};
+    const auto surfaceHistory = fr.graph.history("surface", surfaceDesc(kSize));
+    const SurfacePair s{fr.surface("surface", g, surfaceHistory.next), surfaceHistory.previous};
     auto motion = fr.uploadHalves("motion", kMotionFormat, 1, std::vector<float>(kPixels * 2, 0.0f));
-    auto run = [&](const std::vector<float>& v, uint32_t layers, History& h, const std::string& name) {
+    auto run = [&](const std::vector<float>& v, uint32_t layers, const std::string& name) {
       auto raw = fr.uploadHalves(name + "-raw", VK_FORMAT_R16_SFLOAT, layers, v);
-      const ShadowDenoised d = denoiseShadows(fr.graph, inputs(), s, motion, raw,
-                                              {h.previous(fr.graph, name, f), h.next(fr.graph, name, f)},
-                                              {f >= 2, f == 0}, name);
+      const auto h = fr.graph.history(name, shadowHistoryDesc(kSize, layers));
+      const ShadowDenoised d =
+          denoiseShadows(fr.graph, inputs(), s, motion, raw, {h.previous, h.next}, {f >= 2, f == 0}, name);
       return std::pair{&fr.download(d.temporal), &fr.download(d.denoised)};
     };
-    const auto [allTemporal, allDenoised] = run(all, kAll, allHistory, "all");
-    const auto [pairTemporal, pairDenoised] = run(pair, 2, pairHistory, "pair");
+    const auto [allTemporal, allDenoised] = run(all, kAll, "all");
+    const auto [pairTemporal, pairDenoised] = run(pair, 2, "pair");
     fr.run();
     const std::vector<float> a = halvesOf(*allDenoised), p = halvesOf(*pairDenoised);
     const std::vector<float> at = floatsOf(*allTemporal), pt = floatsOf(*pairTemporal);
@@ -228,47 +225,36 @@ struct Outputs {
   std::vector<vec4> radianceTemporal, radianceDenoised;
 };
 
+// One frame of both denoisers, with histories carried from the frame before (graph/history.h).
 class DenoiseRun {
  public:
-  DenoiseRun(History& surface, History& shadow, History& color, History& moments)
-      : surface_(surface), shadow_(shadow), color_(color), moments_(moments) {}
-
   Outputs frame(Denoise::Frame& fr, const ref::GBufferCpu& g, const std::vector<float>& visibility,
                 const std::vector<vec4>& radiance, TemporalState state, const DenoiseInputs& in) {
-    SurfacePair s{fr.surface("surface", g, surface_.next(fr.graph, "surface", f_)),
-                  surface_.previous(fr.graph, "surface", f_)};
+    const auto surface = fr.graph.history("surface", surfaceDesc(kSize));
+    const auto shadow = fr.graph.history("shadow", shadowHistoryDesc(kSize, kLights));
+    const auto color = fr.graph.history("color", svgfColorHistoryDesc(kSize));
+    const auto moments = fr.graph.history("moments", svgfMomentsHistoryDesc(kSize));
+    SurfacePair s{fr.surface("surface", g, surface.next), surface.previous};
     auto motion = fr.uploadHalves("motion", kMotionFormat, 1, std::vector<float>(kPixels * 2, 0.0f));  // static
     auto vis = fr.uploadHalves("vis", VK_FORMAT_R16_SFLOAT, kLights, visibility);
     auto rad = fr.uploadHalves("rad", VK_FORMAT_R16G16B16A16_SFLOAT, 1, flatten(radiance));
-    ShadowDenoised sh =
-        denoiseShadows(fr.graph, in, s, motion, vis,
-                       {shadow_.previous(fr.graph, "shadow", f_), shadow_.next(fr.graph, "shadow", f_)}, state);
-    RadianceDenoised rd =
-        denoiseRadiance(fr.graph, in, "reflection", s, motion, rad,
-                        {color_.previous(fr.graph, "color", f_), color_.next(fr.graph, "color", f_)},
-                        {moments_.previous(fr.graph, "moments", f_), moments_.next(fr.graph, "moments", f_)}, state);
+    ShadowDenoised sh = denoiseShadows(fr.graph, in, s, motion, vis, {shadow.previous, shadow.next}, state);
+    RadianceDenoised rd = denoiseRadiance(fr.graph, in, "reflection", s, motion, rad, {color.previous, color.next},
+                                          {moments.previous, moments.next}, state);
     auto& a = fr.download(sh.temporal);
     auto& b = fr.download(sh.denoised);
     auto& c = fr.download(rd.temporal);
     auto& d = fr.download(rd.denoised);
     fr.run();
-    ++f_;
     return {floatsOf(a), halvesOf(b), vec4sOf(floatsOf(c)), vec4sOf(halvesOf(d))};
   }
-
- private:
-  History &surface_, &shadow_, &color_, &moments_;
-  uint32_t f_ = 0;
 };
 
 class DenoiseFrames : public Denoise {
  protected:
   Outputs frame(const ref::GBufferCpu& g, const std::vector<float>& vis, const std::vector<vec4>& rad,
                 TemporalState st) {
-    if (!run_)
-      run_ = std::make_unique<DenoiseRun>(
-          history(surfaceDesc(kSize), "surface"), history(shadowHistoryDesc(kSize, kLights), "shadow"),
-          history(svgfColorHistoryDesc(kSize), "color"), history(svgfMomentsHistoryDesc(kSize), "moments"));
+    if (!run_) run_ = std::make_unique<DenoiseRun>();
     Frame fr(*this);
     return run_->frame(fr, g, vis, rad, st, inputs());
   }

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/image_io.h"
 #include "render/renderer.h"
@@ -32,13 +34,23 @@ std::map<std::string, ImageF> render(const std::filesystem::path& dir, const std
 
 float at(const ImageF& img, int x, int y, int c = 0) { return img.pixel(x, y)[c]; }
 
-TEST(IndirectRate, LaunchedRaysAtQuarterRateCountOneInvocationPerBlock) {
-  // Bounce ray + shadow ray per invocation: full rate one invocation per pixel, quarter one per block.
-  using render::IndirectRate;
-  for (const char* pass : {"rt-indirect", "raw-rt-indirect"}) {
-    EXPECT_EQ(render::launchedRays(pass, 1920, 1080, 1, 1, 8, IndirectRate::Full).rays, 1920ull * 1080 * 2);
-    EXPECT_EQ(render::launchedRays(pass, 1920, 1080, 1, 1, 8, IndirectRate::Quarter).rays, 960ull * 540 * 2);
-    EXPECT_EQ(render::launchedRays(pass, 63, 47, 1, 1, 8, IndirectRate::Quarter).rays, 32ull * 24 * 2);
+TEST(IndirectRate, PassesReportOneInvocationPerBlockAtQuarterRate) {
+  // The rays a pass declares (--json "rays"): a bounce ray and a shadow ray per invocation; full rate
+  // one invocation per pixel, quarter one per 2×2 block, rounded up on an odd-sized image.
+  auto dir = testDir();
+  for (const auto& [rate, invocations] : {std::pair{"full", 63ull * 47}, std::pair{"quarter", 32ull * 24}}) {
+    const auto json = dir / (std::string(rate) + ".json");
+    RunResult r = runRayster("render builtin:cornell --size 63x47 --frames 1 --indirect on --raw-rays --indirect-rate " +
+                             std::string(rate) + " --json " + json.string() + " -o " + (dir / "out.png").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
+    int found = 0;
+    for (const auto& p : j["passes"])
+      if (p["name"] == "rt-indirect" || p["name"] == "raw-rt-indirect") {
+        EXPECT_EQ(p["rays"].get<uint64_t>(), invocations * 2) << rate << " " << p["name"];
+        ++found;
+      }
+    EXPECT_EQ(found, 2) << rate;
   }
 }
 

@@ -158,5 +158,59 @@ TEST_F(GraphAliasingDevice, ImportedImagesAreReportedNotAliased) {
   EXPECT_NE(listing.find("RGBA16F"), std::string::npos) << listing;
 }
 
+// A history through three frames: each frame copies what the frame before wrote, then writes its own
+// colour; a reset empties it, and a frame that does not ask for it releases its memory.
+TEST_F(GraphAliasingDevice, HistoryReadsTheFrameBeforeAndIsReleasedWhenUnused) {
+  HistoryStore store;
+  TransientPool pool(true);
+  rhi::Buffer buffer(*ctx_, kW * kH * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "readback");
+  ResourceState bufferState;
+  auto frame = [&](uint32_t f, bool reset, bool ask) -> uint32_t {
+    store.beginFrame(f, reset);
+    RenderGraph graph(ctx_.get(), &pool, &store);
+    uint32_t frames = 0;
+    if (ask) {
+      const RenderGraph::History h = graph.history("taa", desc());
+      frames = h.frames;
+      BufferHandle buf = graph.importBuffer("readback", &buffer, &bufferState);
+      if (h.frames > 0)
+        graph.addPass("copy-previous", [&](PassBuilder& b) {
+          b.read(h.previous, Use::TransferSrc);
+          b.write(buf, Use::TransferDst);
+        }, [h, buf](PassContext& pc) {
+          VkBufferImageCopy region{};
+          region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+          region.imageExtent = {kW, kH, 1};
+          vkCmdCopyImageToBuffer(pc.cmd, pc.image(h.previous).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                 pc.buffer(buf).handle(), 1, &region);
+        });
+      graph.addPass("write-next", [&](PassBuilder& b) { b.write(h.next, Use::TransferDst); }, [h, f](PassContext& pc) {
+        const VkClearColorValue colour{{float(f + 1) / 16.0f, 0.0f, 0.0f, 1.0f}};
+        const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(pc.cmd, pc.image(h.next).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &colour, 1,
+                             &range);
+      });
+    }
+    VkCommandBuffer cmd = commands_->begin();
+    graph.execute(cmd, nullptr);
+    ctx_->wait(commands_->submit());
+    store.endFrame();
+    ctx_->collectGarbage();
+    return frames;
+  };
+  auto red = [&] { return static_cast<const uint8_t*>(buffer.mapped())[4 * (kW * kH / 2)]; };
+  EXPECT_EQ(frame(0, true, true), 0u) << "the first frame has no history";
+  EXPECT_EQ(store.frames("taa"), 1u);
+  EXPECT_EQ(store.bytes(), 2 * rhi::Image(*ctx_, desc(), "probe").bytes());
+  EXPECT_EQ(frame(1, false, true), 1u);
+  EXPECT_EQ(red(), uint8_t(std::lround(1 / 16.0f * 255.0f))) << "frame 1 reads what frame 0 wrote";
+  EXPECT_EQ(frame(2, false, true), 2u);
+  EXPECT_EQ(red(), uint8_t(std::lround(2 / 16.0f * 255.0f))) << "frame 2 reads what frame 1 wrote, not frame 0";
+  EXPECT_EQ(frame(3, true, true), 0u) << "a reset (camera cut) empties the history";
+  frame(4, false, false);
+  EXPECT_EQ(store.frames("taa"), 0u);
+  EXPECT_EQ(store.bytes(), 0u) << "a history no frame asked for is released";
+}
+
 } // namespace
 } // namespace rayster::graph
