@@ -3,6 +3,7 @@
 // one process was seen to slow later passes 2–4× on the H100), collects each child's JSON and
 // writes the results as JSON, CSV and SVG.
 #include "app/bench_command.h"
+#include "app/settings_cli.h"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -18,6 +19,7 @@
 #include <fmt/format.h>
 
 #include "app/bench_report.h"
+#include "app/build_info.h"
 #include "core/log.h"
 #include "render/renderer.h"
 #include "rhi/context.h"
@@ -81,9 +83,11 @@ json passJson(const render::PassStats& p) {
           {"grays_per_s", graysPerSecond(p.info.rays, p.medianMs)}};
 }
 
-json configResult(const rhi::Context& ctx, const BenchConfig& c, const render::RenderOutput& out) {
+json configResult(const rhi::Context& ctx, const BenchConfig& c, const render::RenderSettings& s,
+                  const render::RenderOutput& out) {
   json j = c.toJson();
   j["id"] = c.id();
+  j["render_settings"] = settingsJson(s);  // every setting of the table, as this configuration ran
   j["ok"] = true;
   j["device"] = ctx.info().name;
   j["driver"] = ctx.info().driverInfo;
@@ -153,9 +157,10 @@ Result<json> runConfig(const BenchOptions& o, const BenchConfig& c) {
     s.shadowLights = c.shadowLights;
     s.rawRays = c.rawRays;
     s.culling = c.culling;
+    if (Status applied = applySettings(c.settings, s); !applied) return applied.error();
     auto out = (*renderer)->render(s);
     if (!out) return out.error();
-    result = configResult(**ctx, c, *out);
+    result = configResult(**ctx, c, s, *out);
   }
   if ((*ctx)->validationEnabled() && (*ctx)->validationErrors() > 0)
     return makeError(ExitCode::Failure, "{} Vulkan validation error(s)", (*ctx)->validationErrors());
@@ -230,7 +235,7 @@ int parentCommand(const BenchOptions& o) {
   if (ec) return fail(makeError(ExitCode::OutputFailed, "cannot create {}: {}", work.string(), ec.message()));
 
   json results = {{"schema", "rayster-bench/1"}, {"plan", plan->name}, {"date", isoDate()},
-                  {"commit", RAYSTER_COMMIT},    {"device", ""},       {"driver", ""}};
+                  {"commit", buildCommit()},    {"device", ""},       {"driver", ""}};
   char host[256] = {};
   gethostname(host, sizeof host - 1);
   results["host"] = host;

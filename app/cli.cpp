@@ -2,15 +2,19 @@
 // exit code with a one-line cause.
 #include <cstdio>
 #include <cstdlib>
-#include <cstdlib>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "app/bench_command.h"
+#include "app/build_info.h"
 #include "app/commands.h"
 #include "app/compare_command.h"
 #include "app/render_command.h"
+#include "app/settings_cli.h"
 #include "app/viewer/viewer.h"
 #include "core/error.h"
 #include "core/log.h"
@@ -33,102 +37,78 @@ bool parseSize(const std::string& text, uint32_t& w, uint32_t& h) {
   h = b;
   return true;
 }
-} // namespace
 
-int run(int argc, char** argv) {
-  CLI::App cli{"Rayster: a real-time hybrid (raster + ray-traced) renderer on Vulkan."};
-  cli.footer(kExitCodes);
-  cli.require_subcommand(1);
+int badArguments(const std::string& message) {
+  std::fprintf(stderr, "rayster: error: %s\n", message.c_str());
+  return int(ExitCode::BadArguments);
+}
+
+// Options every subcommand takes (before or after its name: the subcommands fall through).
+struct GlobalOptions {
   bool verbose = false;
   bool validation = std::getenv("RAYSTER_VALIDATION") && std::string(std::getenv("RAYSTER_VALIDATION")) == "1";
   std::string device;
-  cli.add_flag("-v,--verbose", verbose, "Print debug details (device, scene statistics)");
-  cli.add_flag("--validation", validation, "Enable Vulkan validation (also RAYSTER_VALIDATION=1); any error fails the run");
-  cli.add_option("--device", device, "Use the device whose name contains this text");
   bool noLabels = false;
-  cli.add_flag("--no-debug-labels", noLabels, "Do not emit debug labels and object names (on by default)");
+};
 
-  RenderOptions ro;
-  std::string size = "1280x720", primary = "auto", tonemap = "aces", taa = "on", mode = "hybrid", culling = "on";
-  CLI::App* render = cli.add_subcommand("render", "Render a scene to an image, headless");
+void addGlobalOptions(CLI::App& cli, GlobalOptions& g) {
+  cli.add_flag("-v,--verbose", g.verbose, "Print debug details (device, scene statistics)");
+  cli.add_flag("--validation", g.validation, "Enable Vulkan validation (also RAYSTER_VALIDATION=1); any error fails the run");
+  cli.add_option("--device", g.device, "Use the device whose name contains this text");
+  cli.add_flag("--no-debug-labels", g.noLabels, "Do not emit debug labels and object names (on by default)");
+  cli.set_version_flag("--version", fmt::format("rayster {} (commit {})", buildVersion(), buildCommit()),
+                       "Print the version and the commit this binary was built from");
+}
+
+// `rayster render`: what CLI11 fills directly (options) and the words converted after parsing.
+struct RenderArgs {
+  CLI::App* app = nullptr;
+  RenderOptions options;
+  std::string size = "1280x720";
+  SettingValues settings;  // the settings table's options given (render/settings_table.h)
+  uint32_t spp = 0;
+  std::vector<std::string> moveInstance;
+};
+
+// The four groups below add the options in the order `rayster render --help` lists them.
+// Scene, outputs, size and sampling.
+void addRenderImageOptions(CLI::App* render, RenderArgs& a) {
+  RenderOptions& ro = a.options;
   render->add_option("scene", ro.scene, "Scene: a .gltf/.glb, .obj or .json scene file, or builtin:NAME (cornell, whitted, spheres, instances[:N]); default builtin:whitted");
   render->add_option("-o,--output", ro.output, "Output image, .png (tonemapped) or .exr (linear HDR)");
   render->add_option("--hdr", ro.hdrOutput, "Also write the linear HDR image to this .exr");
   render->add_flag("--exr-float", ro.exrFloat,
                    "Write EXR files (-o, --hdr, --aov) with 32-bit float channels instead of half floats, whose "
                    "largest value is 65504 (larger values are clamped there)");
-  render->add_option("--size", size, "Image size WxH (default 1280x720; 640x360 on a CPU device such as lavapipe)");
+  render->add_option("--size", a.size, "Image size WxH (default 1280x720; 640x360 on a CPU device such as lavapipe)");
   render
       ->add_option("--frames", ro.settings.frames,
                    "Frames to accumulate for the static camera (default 16; 4 on a CPU device such as lavapipe)")
       ->check(CLI::Range(1u, 100000u));
   render->add_option("--seed", ro.settings.seed, "Random seed; the same seed gives the same image");
-  uint32_t spp = 0;
-  render->add_option("--spp", spp, "Samples per pixel of --mode pathtrace, one per frame (sets --frames)")
+  render->add_option("--spp", a.spp, "Samples per pixel of --mode pathtrace, one per frame (sets --frames)")
       ->check(CLI::Range(1u, 100000u));
-  render->add_option("--max-depth", ro.settings.maxDepth,
-                     "Surface interactions along a path after the camera ray (default 8): the path tracer's "
-                     "vertices, and the G-buffer surface plus up to N-1 (at most 8) reflection/refraction rays "
-                     "in hybrid mode")
-      ->check(CLI::Range(1u, 64u));
-  render->add_option("--mode", mode,
-                     "hybrid (raster/traced G-buffer + ray-traced effects), pathtrace (the reference) or raster "
-                     "(no ray tracing)")
-      ->check(CLI::IsMember({"hybrid", "pathtrace", "raster"}));
+}
+
+// What the frame renders and how the camera and the scene move.
+void addRenderFrameOptions(CLI::App* render, RenderArgs& a) {
+  RenderOptions& ro = a.options;
   render->add_flag("--require-rt", ro.requireRt,
                    "Exit with code 5 on a device without ray-tracing pipelines instead of rendering with "
                    "--mode raster (the default fallback, announced in one line)");
-  render->add_option("--primary", primary, "G-buffer producer: raster, rt (traced primary rays) or auto")
-      ->check(CLI::IsMember({"raster", "rt", "auto"}));
-  render->add_option("--exposure", ro.settings.exposureEv, "Exposure in EV stops (default 0)");
-  render->add_option("--tonemap", tonemap, "Tonemap operator: aces (fitted ACES, default) or neutral (Khronos PBR Neutral)")
-      ->check(CLI::IsMember({"aces", "neutral"}));
-  render->add_option("--taa", taa,
-                     "Temporal anti-aliasing with sub-pixel jitter: on (default) or off; a static view converges to a "
-                     "supersampled image over --frames")
-      ->check(CLI::IsMember({"on", "off"}));
-  render->add_option("--culling", culling,
-                     "GPU frustum culling of the raster G-buffer's draws (indirect draws): on (default) or off")
-      ->check(CLI::IsMember({"on", "off"}));
   render->add_option("--camera", ro.settings.camera, "Camera name from the scene");
   render->add_option("--time", ro.settings.time, "Animation time of the first frame, in seconds (default 0)");
   render->add_flag("--pause{false}", ro.settings.animate,
                    "Hold glTF animations at --time instead of playing them at --path-fps");
-  render->add_option("--shadow-lights", ro.settings.shadowLights,
-                     "Lights with their own shadow layer (0-8, default 8); a scene with more lights picks one "
-                     "light per pixel by importance instead")
-      ->check(CLI::Range(0, 8));
   render->add_flag("--camera-path", ro.settings.cameraPath,
                    "Fly along the scene file's camera path, one frame per 1/--path-fps seconds");
   render->add_option("--path-fps", ro.settings.pathFps, "Frames per second of path playback (default 60)")
       ->check(CLI::Range(1.0f, 10000.0f));
-  render->add_option("--glossy-threshold", ro.settings.glossyThreshold,
-                     "Trace glossy reflections (one GGX VNDF sample per pixel) up to this roughness; rougher "
-                     "surfaces fade to the environment approximation over 0.1 more (default 0.5)")
-      ->check(CLI::Range(0.0f, 1.0f));
-  render->add_option("--mirror-roughness", ro.settings.mirrorRoughness,
-                     "Surfaces at most this rough reflect as perfect mirrors (default 0.1; negative: none, every "
-                     "opaque reflection is VNDF-sampled)")
-      ->check(CLI::Range(-1.0f, 1.0f));
-  std::string ao = "on", indirect, indirectRate = "quarter", denoise = "on";
-  render->add_option("--ao", ao, "Ray-traced ambient occlusion of ambient and environment light: on (default) or off")
-      ->check(CLI::IsMember({"on", "off"}));
-  render->add_option("--denoise", denoise,
-                     "The hybrid's denoisers of shadows, AO, reflections and indirect light: on (default) or off "
-                     "(lighting takes the raw one-sample signals)")
-      ->check(CLI::IsMember({"on", "off"}));
-  render->add_option("--ao-radius", ro.settings.aoRadius,
-                     "AO ray length in scene units (default 0.1 x the scene's bounding-box diagonal)")
-      ->check(CLI::PositiveNumber);
-  render->add_option("--indirect", indirect,
-                     "One-bounce ray-traced indirect diffuse: on or off (default: on for builtin:whitted and "
-                     "builtin:cornell, off otherwise)")
-      ->check(CLI::IsMember({"on", "off"}));
-  render->add_option("--indirect-rate", indirectRate,
-                     "Pixels the indirect diffuse traces per frame: quarter (default; one of each 2x2 block, "
-                     "rotating over 4 frames, the rest filled from traced neighbours of similar depth and normal) "
-                     "or full")
-      ->check(CLI::IsMember({"full", "quarter"}));
+}
+
+// Timings, memory, intermediate images, raw-rate twins, scripted edits, JSON.
+void addRenderReportOptions(CLI::App* render, RenderArgs& a) {
+  RenderOptions& ro = a.options;
   render->add_flag("--timings", ro.printTimings, "Print per-pass GPU times");
   render->add_flag("--memory-report", ro.memoryReport,
                    "Print the last frame's images (G-buffer, targets, histories): format, size, bytes, and which "
@@ -143,13 +123,37 @@ int run(int argc, char** argv) {
                      "(what each raw twin's rays did)");
   render->add_flag("--raw-rays", ro.settings.rawRays,
                    "Also trace every ray-traced pass's rays with trivial shaders (the bench's raw-rate twins)");
-  std::vector<std::string> moveInstance;
-  render->add_option("--move-instance", moveInstance,
+  render->add_option("--move-instance", a.moveInstance,
                      "At frame FRAME (0-based) move the named instance to X,Y,Z: NAME:X,Y,Z@FRAME, repeatable "
                      "(motion vectors and the TLAS follow)");
   render->add_option("--json", ro.jsonOutput, "Write per-pass GPU times and settings as JSON to this file");
+}
 
-  BenchOptions bo;
+void addRenderCommand(CLI::App& cli, RenderArgs& a) {
+  a.app = cli.add_subcommand("render", "Render a scene to an image, headless");
+  addRenderImageOptions(a.app, a);
+  addRenderFrameOptions(a.app, a);
+  addSettingOptions(a.app, render::kUseRender, a.settings);  // mode, effects, tonemap, ...: the settings table
+  addRenderReportOptions(a.app, a);
+}
+
+// The parsed words of `rayster render` into its settings, then the render.
+int runRender(RenderArgs& a, const GlobalOptions& g) {
+  RenderOptions& ro = a.options;
+  if (!parseSize(a.size, ro.settings.width, ro.settings.height))
+    return badArguments("--size must be WxH with 1..16384 each, got '" + a.size + "'");
+  if (Status applied = applySettings(a.settings, ro.settings); !applied) return badArguments(applied.error().message);
+  if (a.spp > 0) ro.settings.frames = a.spp;
+  ro.sizeGiven = a.app->count("--size") > 0;
+  ro.framesGiven = a.app->count("--frames") > 0 || a.spp > 0;
+  if (Status m = parseMoves(a.moveInstance, ro.settings.moves); !m) return badArguments(m.error().message);
+  ro.validation = g.validation;
+  ro.device = g.device;
+  ro.debugLabels = !g.noLabels;
+  return renderCommand(ro);
+}
+
+CLI::App* addBenchCommand(CLI::App& cli, BenchOptions& bo) {
   CLI::App* bench = cli.add_subcommand(
       "bench", "Time scenes x sizes x modes (one process per configuration): per-pass GPU ms, rays, memory; "
                "writes JSON, CSV and an SVG plot. --compare A.json B.json reports significant changes");
@@ -169,6 +173,7 @@ int run(int argc, char** argv) {
   bench->add_flag("--raw-rays", bo.axes.rawRays,
                   "Also trace the rays of every ray-traced pass (primary, shadows, AO, direct, indirect, specular) "
                   "with trivial shaders and report each pass's share of that raw ray rate (raw_fraction)");
+  addSettingOptions(bench, render::kUseBench, bo.axes.settings);  // applied to every configuration
   bench->add_option("--plan", bo.plan, "A JSON plan of sweeps (bench/plans/*.json) instead of the axes above");
   bench->add_option("--json", bo.json, "Results (default bench-out/bench.json); CSV and SVG beside it");
   bench->add_option("--csv", bo.csv, "CSV output (default: the --json path with .csv)");
@@ -181,93 +186,91 @@ int run(int argc, char** argv) {
   bench->add_option("--child", bo.child, "(internal) run one configuration, given as JSON")->group("");
   bench->add_option("--child-out", bo.childOut, "(internal) where the child writes its JSON")->group("");
   bench->fallthrough();
+  return bench;
+}
 
-  CLI::App* info = cli.add_subcommand("info", "List Vulkan devices and their ray-tracing capabilities");
-
-  CompareOptions co;
-  CLI::App* compareCmd = cli.add_subcommand(
+CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& co) {
+  CLI::App* compare = cli.add_subcommand(
       "compare", "Compare two images (PNG or EXR): FLIP, HDR-FLIP, PSNR, RMSE, relative MSE (docs/compare.md)");
-  compareCmd->add_option("reference", co.reference, "Reference image")->required();
-  compareCmd->add_option("test", co.test, "Image to compare with the reference")->required();
-  compareCmd->add_option("--metric", co.metrics, "flip, hdr-flip, psnr, rmse, relmse or all (default); repeat or comma-separate")
+  compare->add_option("reference", co.reference, "Reference image")->required();
+  compare->add_option("test", co.test, "Image to compare with the reference")->required();
+  compare->add_option("--metric", co.metrics, "flip, hdr-flip, psnr, rmse, relmse or all (default); repeat or comma-separate")
       ->delimiter(',')
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  compareCmd->add_option("--mask", co.mask, "Only pixels whose rgb is nonzero in this PNG count");
-  compareCmd->add_option("--heatmap", co.heatmap,
+  compare->add_option("--mask", co.mask, "Only pixels whose rgb is nonzero in this PNG count");
+  compare->add_option("--heatmap", co.heatmap,
                          "Write the per-pixel error as a .png: the FLIP map in magma (HDR-FLIP for an HDR reference), "
                          "or an 8-bit difference ramp when no FLIP metric is computed");
-  compareCmd->add_option("--json", co.json, "Write every metric, the exposures and budgets as JSON to this file");
-  compareCmd->add_option("--budget", co.budgets,
+  compare->add_option("--json", co.json, "Write every metric, the exposures and budgets as JSON to this file");
+  compare->add_option("--budget", co.budgets,
                          "METRIC=VALUE; exit 9 when over it (flip, hdr-flip, rmse, relmse: at most; psnr: at least); "
                          "repeat or comma-separate")
       ->delimiter(',')
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  compareCmd->add_option("--ppd", co.ppd, "FLIP observer, pixels per degree of visual angle (default 67)")
+  compare->add_option("--ppd", co.ppd, "FLIP observer, pixels per degree of visual angle (default 67)")
       ->check(CLI::PositiveNumber);
-  compareCmd->add_option("--tolerance", co.tolerance, "Per-channel tolerance in 1/255 steps (default 2)");
-  compareCmd->add_option("--min-fraction", co.minFraction,
+  compare->add_option("--tolerance", co.tolerance, "Per-channel tolerance in 1/255 steps (default 2)");
+  compare->add_option("--min-fraction", co.minFraction,
                          "Exit 9 unless at least this fraction of pixels is within tolerance (e.g. 0.999)");
-  compareCmd->fallthrough();
-  ViewCommand view;
-  addViewCommand(cli, view);
-  render->fallthrough();  // global options (-v, --validation, --device) also after the subcommand
-  info->fallthrough();
+  compare->fallthrough();
+  return compare;
+}
 
+// Parses the command line. Returns the exit code to end with after --help, --version or a parse
+// error (reported in one line), nothing when a subcommand should run.
+std::optional<int> parse(CLI::App& cli, int argc, char** argv) {
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return cli.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return cli.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return cli.exit(e);
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "rayster: error: %s (see rayster --help)\n", e.what());
     return int(ExitCode::BadArguments);
   }
-  if (verbose) log::setLevel(log::Level::Debug);
+  return std::nullopt;
+}
+
+} // namespace
+
+int run(int argc, char** argv) {
+  CLI::App cli{"Rayster: a real-time hybrid (raster + ray-traced) renderer on Vulkan."};
+  cli.footer(kExitCodes);
+  cli.require_subcommand(1);
+  GlobalOptions global;
+  addGlobalOptions(cli, global);
+  RenderArgs render;
+  addRenderCommand(cli, render);
+  BenchOptions bo;
+  CLI::App* bench = addBenchCommand(cli, bo);
+  CLI::App* info = cli.add_subcommand("info", "List Vulkan devices and their ray-tracing capabilities");
+  CompareOptions co;
+  CLI::App* compare = addCompareCommand(cli, co);
+  ViewCommand view;
+  addViewCommand(cli, view);
+  render.app->fallthrough();  // global options (-v, --validation, --device) also after the subcommand
+  info->fallthrough();
+
+  if (const std::optional<int> done = parse(cli, argc, argv)) return *done;
+  if (global.verbose) log::setLevel(log::Level::Debug);
   // Headless runs need no display, but Mesa and the loader expect a runtime directory.
   setenv("XDG_RUNTIME_DIR", "/tmp", /*overwrite=*/0);
 
   if (info->parsed()) return infoCommand();
   if (bench->parsed()) {
-    bo.validation = validation;
-    bo.device = device;
-    bo.debugLabels = !noLabels;
+    bo.validation = global.validation;
+    bo.device = global.device;
+    bo.debugLabels = !global.noLabels;
     return benchCommand(bo);
   }
-  if (compareCmd->parsed()) return compareCommand(co);
-  if (view.app->parsed()) return viewCommand(view, validation, device, !noLabels);
-  if (render->parsed()) {
-    if (!parseSize(size, ro.settings.width, ro.settings.height)) {
-      std::fprintf(stderr, "rayster: error: --size must be WxH with 1..16384 each, got '%s'\n", size.c_str());
-      return int(ExitCode::BadArguments);
-    }
-    ro.settings.primary = primary == "raster" ? render::Primary::Raster
-                          : primary == "rt"   ? render::Primary::Traced
-                                              : render::Primary::Auto;
-    ro.settings.mode = mode == "pathtrace" ? render::Mode::PathTrace
-                       : mode == "raster"  ? render::Mode::Raster
-                                           : render::Mode::Hybrid;
-    ro.settings.tonemap = *render::parseTonemapper(tonemap);  // CLI11 checked the name
-    ro.settings.taa = taa == "on";
-    ro.settings.culling = culling == "on";
-    if (spp > 0) ro.settings.frames = spp;
-    ro.sizeGiven = render->count("--size") > 0;
-    ro.framesGiven = render->count("--frames") > 0 || spp > 0;
-    if (Status m = parseMoves(moveInstance, ro.settings.moves); !m) {
-      std::fprintf(stderr, "rayster: error: %s\n", m.error().message.c_str());
-      return int(ExitCode::BadArguments);
-    }
-    ro.settings.ao = ao == "on";
-    ro.settings.denoise = denoise == "on";
-    if (!indirect.empty()) ro.settings.indirect = indirect == "on";
-    ro.settings.indirectRate = indirectRate == "full" ? render::IndirectRate::Full : render::IndirectRate::Quarter;
-    ro.validation = validation;
-    ro.device = device;
-    ro.debugLabels = !noLabels;
-    return renderCommand(ro);
-  }
+  if (compare->parsed()) return compareCommand(co);
+  if (view.app->parsed()) return viewCommand(view, global.validation, global.device, !global.noLabels);
+  if (render.app->parsed()) return runRender(render, global);
   return int(ExitCode::BadArguments);
 }
 

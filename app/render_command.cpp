@@ -12,7 +12,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/build_info.h"
 #include "app/progress.h"
+#include "app/settings_cli.h"
 #include "core/image_io.h"
 #include "core/log.h"
 #include "rhi/context.h"
@@ -67,7 +69,7 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   nlohmann::json j;
   j["device"] = ctx.info().name;
   j["driver"] = ctx.info().driverInfo;
-  j["commit"] = RAYSTER_COMMIT;
+  j["commit"] = buildCommit();
   j["scene"] = o.scene;
   j["width"] = s.width;
   j["height"] = s.height;
@@ -79,6 +81,7 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   j["taa"] = s.taa;
   j["culling"] = s.culling;
   j["indirect_rate"] = render::indirectRateName(s.indirectRate);
+  j["render_settings"] = settingsJson(s);  // every setting of the table (render/settings_table.h)
   if (out.visibleDraws >= 0) j["draws"] = {{"visible", out.visibleDraws}, {"total", out.totalDraws}};
   j["max_depth"] = s.maxDepth;
   if (out.rasterGBufferMs >= 0) j["auto"] = {{"raster_gbuffer_ms", out.rasterGBufferMs}, {"traced_gbuffer_ms", out.tracedGBufferMs}};
@@ -244,6 +247,7 @@ int infoCommand() {
   auto devices = rhi::Context::listDevices();
   if (!devices) return fail(devices.error());
   if (devices->empty()) return fail(makeError(ExitCode::NoDevice, "no Vulkan device found"));
+  std::printf("rayster %s (commit %s)\n", buildVersion(), buildCommit());
   for (const rhi::DeviceInfo& d : *devices) {
     const rhi::Capabilities& c = d.caps;
     std::printf("%s (%s)\n", d.name.c_str(), d.typeName());

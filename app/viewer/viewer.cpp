@@ -105,6 +105,330 @@ const scene::Camera& startCamera(const scene::Scene& scene, const std::string& n
   return scene.cameras.front();
 }
 
+// One `rayster view` session: the window's loop around one renderer, and what the loop keeps
+// between frames. Each step of a frame is a member function, called in order by run().
+class ViewerSession {
+ public:
+  ViewerSession(const ViewOptions& o, Window& window, rhi::Context& vk, std::unique_ptr<scene::Scene> scene,
+                std::unique_ptr<render::Renderer> renderer)
+      : o_(o),
+        window_(window),
+        w_(window.handle()),
+        vk_(vk),
+        scene_(std::move(scene)),
+        renderer_(std::move(renderer)),
+        presenter_(vk, window.framebufferSize(), o.vsync),
+        ui_(vk, window.handle(), presenter_.uiPass(), presenter_.swapchain().minImageCount(),
+            presenter_.swapchain().imageCount()),
+        showUi_(!o.hideUi),
+        last_(std::chrono::steady_clock::now()),
+        failAt_(injectedFailure())
+#if RAYSTER_SHADER_HOT_RELOAD
+        ,
+        shaderReloader_(RAYSTER_GLSLC, RAYSTER_SHADER_DIR)
+#endif
+  {
+    st_.settings = o.settings;
+    st_.vsync = o.vsync;
+    st_.playPath = o.settings.cameraPath;
+    const auto& aovs = render::aovNames();
+    if (auto it = std::find(aovs.begin(), aovs.end(), o.debugView); it != aovs.end())
+      st_.debugView = int(it - aovs.begin()) + 1;
+    camera_.reset(startCamera(*scene_, o.settings.camera));
+    gShowFatal = [this](const char* message) { showFatalInWindow(message); };
+    rhi::setFatalHook(showFatal);
+  }
+  ~ViewerSession() {
+    rhi::setFatalHook(nullptr);
+    gShowFatal = nullptr;
+  }
+  ViewerSession(const ViewerSession&) = delete;
+  ViewerSession& operator=(const ViewerSession&) = delete;
+
+  // Input → panel → one renderer frame → present, until the window closes or the scripted frames
+  // are done. Returns the exit code of a failure, nothing when the session ended normally.
+  std::optional<int> run() {
+    while (!window_.shouldClose()) {
+      window_.poll();
+      applyScriptedResizes();
+      VkExtent2D size = window_.framebufferSize();
+      if (size.width == 0 || size.height == 0) {  // minimised: render nothing until restored
+        window_.waitEvents();
+        continue;
+      }
+      size = followWindowSize(size);
+      if (const std::optional<int> failed = loadDroppedFile()) return failed;
+      pollShaderReload();
+      const float dt = tick();
+      if (ui_.build(st_, camera_, *scene_, vk_.info().name))
+        restart_ = true;
+      else if (renderer_)
+        renderer_->updateSettings(st_.settings);  // the tonemapper and the like: no restart
+      handleKeys();
+      applyPanelRequests();
+      const bool grabbing = updateSelection();
+      const bool moved =
+          camera_.update(w_, dt, window_.takeScroll(), !ui_.wantsMouse() && !grabbing, !ui_.wantsKeyboard());
+      if (restart_ && !beginRun(size)) continue;
+      const bool lastFrame = o_.frames && frame_ + 1 == o_.frames;
+      const bool shoot = (lastFrame && !o_.screenshot.empty()) || st_.screenshot;
+      recordStats(renderFrame(moved, shoot), size);
+      Image8 captured;
+      present(shoot ? &captured : nullptr);
+      if (shoot)
+        if (const std::optional<int> failed = writeScreenshot(captured, lastFrame)) return failed;
+      ++frame_;
+      if (lastFrame) break;
+    }
+    vk_.waitIdle();
+    return std::nullopt;
+  }
+
+ private:
+  // --resize-at F:WxH: the window changes size at frame F.
+  void applyScriptedResizes() {
+    for (const auto& r : o_.resizes)
+      if (r.frame == frame_) window_.setSize(int(r.width), int(r.height));
+  }
+
+  // A new window size or vsync setting recreates the swapchain (and restarts the run); returns
+  // the size frames render at.
+  VkExtent2D followWindowSize(VkExtent2D size) {
+    const VkExtent2D current = presenter_.swapchain().extent();
+    if (size.width != current.width || size.height != current.height || st_.vsync != presenter_.swapchain().vsync()) {
+      presenter_.resize(size, st_.vsync);
+      size = presenter_.swapchain().extent();
+      restart_ = true;
+    }
+    return size;
+  }
+
+  // Dropped files replace the scene (the first one that loads). Returns the exit code when the new
+  // scene's renderer cannot be created.
+  std::optional<int> loadDroppedFile() {
+    for (const std::string& path : window_.takeDrops()) {
+      auto next = scene::loadScene(path);
+      if (!next) {
+        st_.message = next.error().message;
+        continue;
+      }
+      vk_.waitIdle();
+      renderer_.reset();
+      scene_ = std::make_unique<scene::Scene>(std::move(*next));
+      auto r = render::Renderer::create(vk_, *scene_);
+      if (!r) return fail(r.error());
+      renderer_ = std::move(*r);
+      camera_.reset(scene_->cameras.front());
+      st_.selection = {};
+      st_.message = "loaded " + std::filesystem::path(path).filename().string();
+      restart_ = true;
+      break;
+    }
+    return std::nullopt;
+  }
+
+  // Development builds: recompiled shaders rebuild the pipelines (a failed compile keeps the old).
+  void pollShaderReload() {
+#if RAYSTER_SHADER_HOT_RELOAD
+    if (const ShaderReloadResult reload = shaderReloader_.poll(); !reload.error.empty()) {
+      st_.message = reload.error;  // the old pipelines stay
+      log::warn("shader reload: {}", reload.error);
+    } else if (!reload.reloaded.empty()) {
+      renderer_->reloadPipelines();
+      st_.message = "reloaded " + std::to_string(reload.reloaded.size()) + " shader(s)";
+      log::info("shader reload: {} shader(s) recompiled, pipelines rebuilt", reload.reloaded.size());
+      restart_ = true;
+    }
+#endif
+  }
+
+  // Seconds since the previous frame, also recorded for the panel's CPU graph.
+  float tick() {
+    const auto now = std::chrono::steady_clock::now();
+    const float dt = std::chrono::duration<float>(now - last_).count();
+    last_ = now;
+    recordHistory(st_.cpuHistory, dt * 1000.0f);
+    return dt;
+  }
+
+  // The keys of the README's table that the panel does not take.
+  void handleKeys() {
+    if (ui_.wantsKeyboard()) return;
+    if (keys_.pressed(w_, GLFW_KEY_TAB)) showUi_ = !showUi_;
+    if (keys_.pressed(w_, GLFW_KEY_F)) st_.frameScene = true;
+    if (keys_.pressed(w_, GLFW_KEY_F12)) st_.screenshot = true;
+    if (keys_.pressed(w_, GLFW_KEY_P) && !scene_->cameraPath.empty()) st_.playPath = !st_.playPath, restart_ = true;
+    if (keys_.pressed(w_, GLFW_KEY_C))
+      camera_.mode = camera_.mode == CameraMode::Orbit ? CameraMode::Fly : CameraMode::Orbit;
+    if (keys_.pressed(w_, GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(w_, GLFW_TRUE);
+    for (int k = 0; k < 9; ++k)
+      if (keys_.pressed(w_, GLFW_KEY_1 + k) && k < int(scene_->cameras.size())) st_.namedCamera = k;
+  }
+
+  // Edited lights, a picked named camera and "frame the scene" are cuts: histories restart.
+  void applyPanelRequests() {
+    if (st_.lightsChanged) {
+      renderer_->refreshLights();
+      cut_ = true;
+    }
+    if (st_.namedCamera >= 0) {
+      camera_.reset(scene_->cameras[size_t(st_.namedCamera)]);
+      st_.namedCamera = -1;
+      cut_ = true;
+    }
+    if (st_.frameScene) {
+      camera_.frame(scene_->bounds());
+      st_.frameScene = false;
+      cut_ = true;
+    }
+  }
+
+  // A click selects the instance under the cursor; holding G moves the selection with the mouse
+  // instead of the camera (returns whether it does). Edits go to the renderer's instance table.
+  bool updateSelection() {
+    const bool grabbing =
+        st_.selection.instance >= 0 && !ui_.wantsKeyboard() && glfwGetKey(w_, GLFW_KEY_G) == GLFW_PRESS;
+    if (const auto clicked = pick_.update(w_, !ui_.wantsMouse() && !grabbing)) {
+      std::vector<glm::mat4> transforms(scene_->instances.size());
+      for (size_t i = 0; i < transforms.size(); ++i) transforms[i] = renderer_->instanceTransform(uint32_t(i));
+      int ww = 0, wh = 0;
+      glfwGetWindowSize(w_, &ww, &wh);
+      st_.selection.instance = pickInstance(*scene_, transforms, camera_.camera(), *clicked, glm::vec2(ww, wh));
+      if (st_.selection.instance >= 0) st_.selection.trs = decompose(transforms[size_t(st_.selection.instance)]);
+    }
+    if (grabbing && pick_.delta != glm::vec2(0.0f)) {
+      int ww = 0, wh = 0;
+      glfwGetWindowSize(w_, &ww, &wh);
+      st_.selection.trs.position += dragOffset(camera_.camera(), st_.selection.trs.position, pick_.delta, float(wh));
+      st_.selection.edited = true;
+    }
+    if (st_.selection.edited && st_.selection.instance >= 0)
+      renderer_->setInstanceTransform(uint32_t(st_.selection.instance), compose(st_.selection.trs));
+    st_.selection.edited = false;
+    return grabbing;
+  }
+
+  // (Re)starts the run with the panel's settings at this size; on failure shows why, falls back to
+  // the hybrid mode without the camera path and returns false (the next iteration tries again).
+  bool beginRun(VkExtent2D size) {
+    st_.settings.width = size.width;
+    st_.settings.height = size.height;
+    st_.settings.cameraPath = st_.playPath;
+    st_.settings.frames = UINT32_MAX;  // the run lasts until the next restart
+    if (auto begun = renderer_->beginRun(st_.settings); !begun) {
+      st_.message = begun.error().message;
+      st_.settings.mode = render::Mode::Hybrid;  // fall back to what works
+      st_.settings.cameraPath = st_.playPath = false;
+      return false;
+    }
+    restart_ = false;
+    return true;
+  }
+
+  // One renderer frame from the viewer's camera (or the camera path); `shoot`: read it back.
+  render::FrameStats renderFrame(bool moved, bool shoot) {
+    render::FrameControl control;
+    if (!st_.playPath) control.camera = camera_.camera();
+    control.cut = cut_;
+    control.moving = moved;
+    control.present = true;
+    control.readback = shoot || st_.debugView != 0;
+    cut_ = false;
+    const render::FrameStats stats = renderer_->renderFrame(control);
+    if (failAt_ && failAt_->second == frame_) VK_CHECK(failAt_->first);
+    if (st_.playPath) camera_.reset(stats.camera);  // leaving the path continues from where it is
+    return stats;
+  }
+
+  void recordStats(const render::FrameStats& stats, VkExtent2D size) {
+    st_.passes.clear();
+    for (const auto& p : stats.passes) st_.passes.emplace_back(p.name, p.ms);
+    recordHistory(st_.gpuHistory, float(stats.gpuMs));
+    st_.raysPerFrame = frameRays(stats);
+    st_.deviceBytes = renderer_->deviceBytesUsed();
+  }
+
+  // A debug view shows one stage, read back and mapped for display as `--aov` PNGs are.
+  std::optional<Image8> debugImage() {
+    if (st_.debugView == 0) return std::nullopt;
+    render::RenderOutput images = renderer_->readbackImages();
+    if (images.aovs.empty()) {
+      st_.message = "this scene has no " + render::aovNames()[size_t(st_.debugView - 1)];
+      return std::nullopt;
+    }
+    return encodeSrgb8(aovForDisplay(images.aovs.front().first, std::move(images.aovs.front().second)));
+  }
+
+  // The frame (or the debug view) with the panel over it; `captured` receives the presented pixels.
+  void present(Image8* captured) {
+    const std::optional<Image8> shown = debugImage();
+    ImDrawData* drawData = ui_.draw();
+    if (!presenter_.present(renderer_->outputImage(), showUi_ ? drawData : nullptr, captured,
+                            shown ? &*shown : nullptr))
+      restart_ = true;  // out of date: the next iteration resizes
+  }
+
+  // --screenshot after the last frame, or F12: the window as shown (.png; F12 also the linear
+  // frame as .exr), or the HDR frame (.exr). Ends the run. Returns the exit code of a failed write.
+  std::optional<int> writeScreenshot(const Image8& captured, bool lastFrame) {
+    std::string path = lastFrame && !o_.screenshot.empty() ? o_.screenshot
+                                                           : "rayster-screenshot-" + std::to_string(frame_) + ".png";
+    const bool exr = std::filesystem::path(path).extension() == ".exr";
+    render::RenderOutput out = renderer_->endRun();
+    restart_ = true;
+    const ExrPixels pixels = o_.exrFloat ? ExrPixels::Float : ExrPixels::Half;
+    Status written = exr ? writeExr(path, out.hdr, pixels) : writePng(path, captured);
+    if (!written) return fail(written.error());
+    // A screenshot key press writes both: the window as shown, and the linear frame.
+    if (!exr && st_.screenshot)
+      written = writeExr(std::filesystem::path(path).replace_extension(".exr"), out.hdr, pixels);
+    st_.message = written ? "wrote " + path : written.error().message;
+    log::info("wrote {} ({}x{}, frame {})", path, captured.width, captured.height, frame_ + 1);
+    st_.screenshot = false;
+    return std::nullopt;
+  }
+
+  // Device loss or memory exhaustion (rhi/vk_check.h): the cause in the title and drawn over a
+  // black frame for kFatalSeconds, before the process exits.
+  void showFatalInWindow(const char* message) {
+    glfwSetWindowTitle(w_, (std::string("Rayster: error: ") + message + " (exiting)").c_str());
+    Image8 black;
+    const VkExtent2D e = presenter_.swapchain().extent();
+    black.width = int(e.width);
+    black.height = int(e.height);
+    black.rgba.assign(size_t(e.width) * e.height * 4, 0);
+    for (size_t i = 3; i < black.rgba.size(); i += 4) black.rgba[i] = 255;
+    log::info("shown in the window: {}", message);
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(kFatalSeconds);
+    while (std::chrono::steady_clock::now() < until) {
+      glfwPollEvents();
+      presenter_.present(renderer_->outputImage(), ui_.drawMessage(message), nullptr, &black);
+      glfwWaitEventsTimeout(0.1);
+    }
+  }
+
+  const ViewOptions& o_;
+  Window& window_;
+  GLFWwindow* w_;
+  rhi::Context& vk_;
+  std::unique_ptr<scene::Scene> scene_;
+  std::unique_ptr<render::Renderer> renderer_;
+  Presenter presenter_;
+  Ui ui_;
+  PanelState st_;
+  MousePick pick_;
+  CameraControl camera_;
+  KeyEdges keys_;
+  bool showUi_;
+  bool restart_ = true, cut_ = false;  // restart: begin a new run; cut: the next frame drops history
+  uint32_t frame_ = 0;
+  std::chrono::steady_clock::time_point last_;
+  std::optional<std::pair<VkResult, uint32_t>> failAt_;
+#if RAYSTER_SHADER_HOT_RELOAD
+  ShaderReloader shaderReloader_;
+#endif
+};
+
 } // namespace
 
 int runViewer(const ViewOptions& o) {
@@ -121,212 +445,8 @@ int runViewer(const ViewOptions& o) {
   {
     auto created = render::Renderer::create(vk, *scene);
     if (!created) return fail(created.error());
-    std::unique_ptr<render::Renderer> renderer = std::move(*created);
-    Presenter presenter(vk, window.framebufferSize(), o.vsync);
-    Ui ui(vk, window.handle(), presenter.uiPass(), presenter.swapchain().minImageCount(),
-          presenter.swapchain().imageCount());
-    PanelState st;
-    st.settings = o.settings;
-    st.vsync = o.vsync;
-    st.playPath = o.settings.cameraPath;
-    const auto& aovs = render::aovNames();
-    if (auto it = std::find(aovs.begin(), aovs.end(), o.debugView); it != aovs.end())
-      st.debugView = int(it - aovs.begin()) + 1;
-    MousePick pick;
-    CameraControl camera;
-    camera.reset(startCamera(*scene, o.settings.camera));
-    bool showUi = !o.hideUi, restart = true, cut = false;
-    KeyEdges keys;
-    uint32_t frame = 0;
-    auto last = std::chrono::steady_clock::now();
-    GLFWwindow* w = window.handle();
-    gShowFatal = [&](const char* message) {
-      glfwSetWindowTitle(w, (std::string("Rayster: error: ") + message + " (exiting)").c_str());
-      Image8 black;
-      const VkExtent2D e = presenter.swapchain().extent();
-      black.width = int(e.width);
-      black.height = int(e.height);
-      black.rgba.assign(size_t(e.width) * e.height * 4, 0);
-      for (size_t i = 3; i < black.rgba.size(); i += 4) black.rgba[i] = 255;
-      log::info("shown in the window: {}", message);
-      const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(kFatalSeconds);
-      while (std::chrono::steady_clock::now() < until) {
-        glfwPollEvents();
-        presenter.present(renderer->outputImage(), ui.drawMessage(message), nullptr, &black);
-        glfwWaitEventsTimeout(0.1);
-      }
-    };
-    rhi::setFatalHook(showFatal);
-    const auto failAt = injectedFailure();
-#if RAYSTER_SHADER_HOT_RELOAD
-    ShaderReloader shaderReloader(RAYSTER_GLSLC, RAYSTER_SHADER_DIR);
-#endif
-
-    while (!window.shouldClose()) {
-      window.poll();
-      for (const auto& r : o.resizes)
-        if (r.frame == frame) window.setSize(int(r.width), int(r.height));
-      VkExtent2D size = window.framebufferSize();
-      if (size.width == 0 || size.height == 0) {  // minimised: render nothing until restored
-        window.waitEvents();
-        continue;
-      }
-      if (size.width != presenter.swapchain().extent().width || size.height != presenter.swapchain().extent().height ||
-          st.vsync != presenter.swapchain().vsync()) {
-        presenter.resize(size, st.vsync);
-        size = presenter.swapchain().extent();
-        restart = true;
-      }
-      // Dropped files replace the scene (the first one that loads).
-      for (const std::string& path : window.takeDrops()) {
-        auto next = scene::loadScene(path);
-        if (!next) {
-          st.message = next.error().message;
-          continue;
-        }
-        vk.waitIdle();
-        renderer.reset();
-        scene = std::make_unique<scene::Scene>(std::move(*next));
-        auto r = render::Renderer::create(vk, *scene);
-        if (!r) return fail(r.error());
-        renderer = std::move(*r);
-        camera.reset(scene->cameras.front());
-        st.selection = {};
-        st.message = "loaded " + std::filesystem::path(path).filename().string();
-        restart = true;
-        break;
-      }
-
-#if RAYSTER_SHADER_HOT_RELOAD
-      if (const ShaderReloadResult reload = shaderReloader.poll(); !reload.error.empty()) {
-        st.message = reload.error;  // the old pipelines stay
-        log::warn("shader reload: {}", reload.error);
-      } else if (!reload.reloaded.empty()) {
-        renderer->reloadPipelines();
-        st.message = "reloaded " + std::to_string(reload.reloaded.size()) + " shader(s)";
-        log::info("shader reload: {} shader(s) recompiled, pipelines rebuilt", reload.reloaded.size());
-        restart = true;
-      }
-#endif
-      const auto now = std::chrono::steady_clock::now();
-      const float dt = std::chrono::duration<float>(now - last).count();
-      last = now;
-      recordHistory(st.cpuHistory, dt * 1000.0f);
-      if (ui.build(st, camera, *scene, vk.info().name)) restart = true;
-      if (!ui.wantsKeyboard()) {
-        if (keys.pressed(w, GLFW_KEY_TAB)) showUi = !showUi;
-        if (keys.pressed(w, GLFW_KEY_F)) st.frameScene = true;
-        if (keys.pressed(w, GLFW_KEY_F12)) st.screenshot = true;
-        if (keys.pressed(w, GLFW_KEY_P) && !scene->cameraPath.empty()) st.playPath = !st.playPath, restart = true;
-        if (keys.pressed(w, GLFW_KEY_C))
-          camera.mode = camera.mode == CameraMode::Orbit ? CameraMode::Fly : CameraMode::Orbit;
-        if (keys.pressed(w, GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(w, GLFW_TRUE);
-        for (int k = 0; k < 9; ++k)
-          if (keys.pressed(w, GLFW_KEY_1 + k) && k < int(scene->cameras.size())) st.namedCamera = k;
-      }
-      if (st.lightsChanged) {
-        renderer->refreshLights();
-        cut = true;
-      }
-      if (st.namedCamera >= 0) {
-        camera.reset(scene->cameras[size_t(st.namedCamera)]);
-        st.namedCamera = -1;
-        cut = true;
-      }
-      if (st.frameScene) {
-        camera.frame(scene->bounds());
-        st.frameScene = false;
-        cut = true;
-      }
-      // Holding G moves the selection with the mouse instead of the camera.
-      const bool grabbing = st.selection.instance >= 0 && !ui.wantsKeyboard() && glfwGetKey(w, GLFW_KEY_G) == GLFW_PRESS;
-      if (const auto clicked = pick.update(w, !ui.wantsMouse() && !grabbing)) {
-        std::vector<glm::mat4> transforms(scene->instances.size());
-        for (size_t i = 0; i < transforms.size(); ++i) transforms[i] = renderer->instanceTransform(uint32_t(i));
-        int ww = 0, wh = 0;
-        glfwGetWindowSize(w, &ww, &wh);
-        st.selection.instance = pickInstance(*scene, transforms, camera.camera(), *clicked, glm::vec2(ww, wh));
-        if (st.selection.instance >= 0)
-          st.selection.trs = decompose(transforms[size_t(st.selection.instance)]);
-      }
-      if (grabbing && pick.delta != glm::vec2(0.0f)) {
-        int ww = 0, wh = 0;
-        glfwGetWindowSize(w, &ww, &wh);
-        st.selection.trs.position += dragOffset(camera.camera(), st.selection.trs.position, pick.delta, float(wh));
-        st.selection.edited = true;
-      }
-      if (st.selection.edited && st.selection.instance >= 0)
-        renderer->setInstanceTransform(uint32_t(st.selection.instance), compose(st.selection.trs));
-      st.selection.edited = false;
-      const bool moved =
-          camera.update(w, dt, window.takeScroll(), !ui.wantsMouse() && !grabbing, !ui.wantsKeyboard());
-
-      if (restart) {
-        st.settings.width = size.width;
-        st.settings.height = size.height;
-        st.settings.cameraPath = st.playPath;
-        st.settings.frames = UINT32_MAX;  // the run lasts until the next restart
-        if (auto begun = renderer->beginRun(st.settings); !begun) {
-          st.message = begun.error().message;
-          st.settings.mode = render::Mode::Hybrid;  // fall back to what works
-          st.settings.cameraPath = st.playPath = false;
-          continue;
-        }
-        restart = false;
-      }
-      const bool lastFrame = o.frames && frame + 1 == o.frames;
-      const bool shoot = (lastFrame && !o.screenshot.empty()) || st.screenshot;
-      render::FrameControl control;
-      if (!st.playPath) control.camera = camera.camera();
-      control.cut = cut;
-      control.moving = moved;
-      control.present = true;
-      control.readback = shoot || st.debugView != 0;
-      cut = false;
-      const render::FrameStats stats = renderer->renderFrame(control);
-      if (failAt && failAt->second == frame) VK_CHECK(failAt->first);
-      if (st.playPath) camera.reset(stats.camera);  // leaving the path continues from where it is
-      st.passes.clear();
-      for (const auto& p : stats.passes) st.passes.emplace_back(p.name, p.ms);
-      recordHistory(st.gpuHistory, float(stats.gpuMs));
-      st.raysPerFrame = frameRays(stats);
-      st.deviceBytes = renderer->deviceBytesUsed();
-
-      // A debug view shows one stage, read back and mapped for display as `--aov` PNGs are.
-      std::optional<Image8> debugImage;
-      if (st.debugView != 0) {
-        render::RenderOutput images = renderer->readbackImages();
-        if (!images.aovs.empty())
-          debugImage = encodeSrgb8(aovForDisplay(images.aovs.front().first, std::move(images.aovs.front().second)));
-        else
-          st.message = "this scene has no " + render::aovNames()[size_t(st.debugView - 1)];
-      }
-      ImDrawData* drawData = ui.draw();
-      Image8 captured;
-      if (!presenter.present(renderer->outputImage(), showUi ? drawData : nullptr, shoot ? &captured : nullptr,
-                             debugImage ? &*debugImage : nullptr))
-        restart = true;  // out of date: the next iteration resizes
-      if (shoot) {
-        std::string path = lastFrame && !o.screenshot.empty() ? o.screenshot : "rayster-screenshot-" + std::to_string(frame) + ".png";
-        const bool exr = std::filesystem::path(path).extension() == ".exr";
-        render::RenderOutput out = renderer->endRun();
-        restart = true;
-        const ExrPixels pixels = o.exrFloat ? ExrPixels::Float : ExrPixels::Half;
-        Status written = exr ? writeExr(path, out.hdr, pixels) : writePng(path, captured);
-        if (!written) return fail(written.error());
-        // A screenshot key press writes both: the window as shown, and the linear frame.
-        if (!exr && st.screenshot)
-          written = writeExr(std::filesystem::path(path).replace_extension(".exr"), out.hdr, pixels);
-        st.message = written ? "wrote " + path : written.error().message;
-        log::info("wrote {} ({}x{}, frame {})", path, captured.width, captured.height, frame + 1);
-        st.screenshot = false;
-      }
-      ++frame;
-      if (lastFrame) break;
-    }
-    vk.waitIdle();
-    rhi::setFatalHook(nullptr);
-    gShowFatal = nullptr;
+    ViewerSession session(o, window, vk, std::move(scene), std::move(*created));
+    if (const std::optional<int> failed = session.run()) return *failed;
   }
   if (vk.validationEnabled() && vk.validationErrors() > 0) {
     std::fprintf(stderr, "rayster: error: %u Vulkan validation error(s)\n", vk.validationErrors());

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/bench_stats.h"
+#include "app/build_info.h"
 #include "tests/render/run_rayster.h"
 
 namespace rayster::test {
@@ -58,6 +59,7 @@ TEST(Bench, JsonIsCompleteAndWellFormed) {
   EXPECT_EQ(j.value("schema", ""), "rayster-bench/1");
   for (const char* k : {"device", "driver", "commit", "date", "plan", "host"}) EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_FALSE(j["device"].get<std::string>().empty());
+  EXPECT_EQ(j["commit"], app::buildCommit());  // stamped by the build (tests/render/test_build_info.cpp)
   ASSERT_EQ(j["configs"].size(), 2u);
   for (const json& c : j["configs"]) {
     const std::string id = c.value("id", "");
