@@ -108,9 +108,20 @@ std::vector<Setting> makeTable() {
                      &RenderSettings::shadowLights, 0, 8, renderView));
   t.push_back(onOff("ao", "Effects", "Ray-traced ambient occlusion of ambient and environment light",
                     &RenderSettings::ao));
-  t.push_back(number("ao-radius", SettingKind::Real, "Effects",
-                     "AO ray length in scene units (0 or less: 0.1 x the scene's bounding-box diagonal)",
-                     &RenderSettings::aoRadius, -1.0, 1e9));
+  {
+    // 0 (the default) means the scene-relative radius; RenderSettings keeps that as a negative value.
+    Setting s{"ao-radius", SettingKind::Real,
+              "AO ray length in scene units; 0: 0.1 x the scene's bounding-box diagonal",
+              {}, 0.0, 1e9, "Effects", kUseAll, true};
+    s.get = [](const RenderSettings& r) { return r.aoRadius > 0.0f ? realText(r.aoRadius) : std::string("0"); };
+    s.set = [s](RenderSettings& r, std::string_view text) -> Status {
+      double v = 0;
+      if (Status n = parseNumber(s, text, v); !n) return n;
+      r.aoRadius = v > 0.0 ? float(v) : -1.0f;
+      return okStatus();
+    };
+    t.push_back(std::move(s));
+  }
   {
     Setting s{"indirect", SettingKind::Choice,
               "One-bounce ray-traced indirect diffuse: on, off or auto (on for builtin:whitted and builtin:cornell, "
