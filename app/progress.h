@@ -1,5 +1,5 @@
 #pragma once
-// Frame progress of a long render on stderr (DESIGN §5: long work shows progress).
+// Frame progress of a long render on stderr (docs/architecture.md §8: long work shows progress).
 #include <cstdint>
 #include <functional>
 

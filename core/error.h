@@ -1,5 +1,5 @@
 #pragma once
-// Errors in tiers (STYLE.md §7):
+// Errors in tiers (docs/style.md §7):
 //  - recoverable paths (files, scenes, device selection) return Result<T> carrying an Error;
 //  - Vulkan failures go through VK_CHECK (rhi/vk_check.h), fatal in every build;
 //  - programmer errors fail fast with RAYSTER_ASSERT, also in release builds.

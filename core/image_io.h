@@ -22,7 +22,7 @@ Status writePng(const std::filesystem::path& path, const Image8& image);
 // beauty pass); Float keeps values past half's range, e.g. a path-traced view of the sun.
 enum class ExrPixels { Half, Float };
 
-// RGBA. Only finite values are written (DESIGN §10: no output holds inf or NaN): values beyond
+// RGBA. Only finite values are written (docs/techniques.md §19: no output holds inf or NaN): values beyond
 // the channel type's range are clamped to its largest finite value (65504 for half) and NaN
 // becomes 0, with one warning per file saying how many values changed.
 Status writeExr(const std::filesystem::path& path, const ImageF& image, ExrPixels pixels = ExrPixels::Half);

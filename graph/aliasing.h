@@ -1,5 +1,5 @@
 #pragma once
-// Memory aliasing of the render graph's transient images (TECHNIQUES.md §17): images whose
+// Memory aliasing of the render graph's transient images (docs/architecture.md §2.4): images whose
 // lifetimes within a frame (first to last use, in the order of the live passes) do not overlap
 // may occupy the same memory. Pure functions on sizes and pass indices, unit-tested without a GPU.
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// The render graph (TECHNIQUES.md §17): passes declare what they read and write; the graph culls
+// The render graph (docs/architecture.md §2): passes declare what they read and write; the graph culls
 // passes whose results nobody uses, derives synchronization2 barriers and layouts from tracked
 // per-resource state, creates transient images, and wraps every pass in a debug label and a GPU
 // timestamp pair. Passes run in the order they were added: a pass can only name resources that

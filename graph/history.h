@@ -1,5 +1,5 @@
 #pragma once
-// Temporal histories as graph resources (docs: a pass never updates a history in place). A history
+// Temporal histories as graph resources (docs/architecture.md §2.5: never updated in place). A history
 // is two images under one name that frames write alternately: frame f reads the one frame f − 1
 // wrote and writes the other. The store keeps them across frames and owns their lifetime: a reset
 // (the first frame of a run, a camera cut) empties every history, a new description (a resize, a

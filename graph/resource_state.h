@@ -1,5 +1,5 @@
 #pragma once
-// Barrier derivation for the render graph (TECHNIQUES.md §17): given what the graph knows about a
+// Barrier derivation for the render graph (docs/architecture.md §2.3): given what the graph knows about a
 // resource and how the next pass uses it, compute the synchronization2 barrier. Pure functions on
 // Vulkan types only, so every hazard rule is unit-tested without a GPU.
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// The render graph's transient images and the frame's memory report (TECHNIQUES.md §17). The pool
+// The render graph's transient images and the frame's memory report (docs/architecture.md §2.4). The pool
 // keeps a frame's transients alive between frames so a static configuration allocates once, and
 // places them on shared memory heaps: images whose lifetimes within the frame do not overlap alias
 // (graph/aliasing.h). Imported images (histories, outputs) are listed in the report, never aliased.

@@ -4,7 +4,7 @@
 // cosine n·v and a perceptual roughness r it holds (A, B) with
 //   F0·A + B = E[F(V·H)·G2(V,L)/G1(V)]  under VNDF sampling (Schlick F),
 // i.e. the directional albedo of the specular lobe. The specular pass divides its sample by A + B
-// (the mean of G2/G1) and lighting multiplies by F0·A + B (TECHNIQUES.md §11).
+// (the mean of G2/G1) and lighting multiplies by F0·A + B (docs/techniques.md §13).
 #include <cstdint>
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Sub-pixel jitter for TAA (TECHNIQUES.md §15): a Halton(2,3) sequence of period kJitterPeriod.
+// Sub-pixel jitter for TAA (docs/techniques.md §18): a Halton(2,3) sequence of period kJitterPeriod.
 //
 // Units: NDC spans 2 across `width` pixels, so one pixel is 2/width in NDC. The offset
 // jx = (2·h2 − 1)/width = (h2 − 0.5)·2/width is therefore (h2 − 0.5) pixels: within ±0.5 px,

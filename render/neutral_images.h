@@ -1,5 +1,5 @@
 #pragma once
-// What lighting reads in place of an effect that records no pass (docs/architecture.md, "off means
+// What lighting reads in place of an effect that records no pass (docs/architecture.md §2.2, "off means
 // gone"): AO switched off is unoccluded (1), no shadowed light needs no visibility, and no
 // reflections, indirect or many-light direct light add nothing (0). One texel each, cleared once
 // when the renderer is made, imported into every frame's graph (so the graph still tracks their

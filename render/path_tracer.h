@@ -1,5 +1,5 @@
 #pragma once
-// The reference renderer (--mode pathtrace, DESIGN.md §3): progressive path tracing of the same
+// The reference renderer (--mode pathtrace, docs/architecture.md §4): progressive path tracing of the same
 // GPU scene, materials, lights, environment and camera as the hybrid frame, one sample per pixel
 // per frame, accumulated in fp32. Deterministic: the seed and the sample count fix the image.
 // The image is the accumulated mean (no TAA); the "variance" AOV is the per-pixel variance of

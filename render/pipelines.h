@@ -6,7 +6,7 @@
 
 namespace rayster::render {
 
-// G-buffer formats (TECHNIQUES.md §1); both producers write the same formats except depth.
+// G-buffer formats (docs/techniques.md §1); both producers write the same formats except depth.
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 inline constexpr VkFormat kTracedDepthFormat = VK_FORMAT_R32_SFLOAT;
 inline constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SNORM;

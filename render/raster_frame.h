@@ -1,5 +1,5 @@
 #pragma once
-// The raster frame (DESIGN.md §3, "raster mode"): the baseline, and the fallback on devices without
+// The raster frame (docs/architecture.md §5): the baseline, and the fallback on devices without
 // ray-tracing pipelines. After the raster G-buffer: shadow maps (sun cascades, spot frusta, point
 // light cubes) resolved with PCF into the visibility layers lighting reads, a first lighting pass,
 // screen-space reflections and approximate refraction from that lit image, and the final lighting.

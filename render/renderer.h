@@ -73,12 +73,12 @@ struct RenderSettings {
   // the pose at `time`.
   bool animate = true;
   float time = 0.0f;
-  // Glossy reflections (TECHNIQUES.md §11): first surfaces at most mirrorRoughness rough reflect as
+  // Glossy reflections (docs/techniques.md §13): first surfaces at most mirrorRoughness rough reflect as
   // perfect mirrors (negative: none, every opaque reflection is VNDF-sampled); up to glossyThreshold
   // one GGX VNDF sample per pixel; rougher ones fade to the environment approximation over 0.1.
   float mirrorRoughness = 0.1f;
   float glossyThreshold = 0.5f;
-  // Ray-traced ambient occlusion (TECHNIQUES.md §13) of ambient and environment light.
+  // Ray-traced ambient occlusion (docs/techniques.md §15) of ambient and environment light.
   bool ao = true;
   // The hybrid's denoisers (shadows, AO, reflections, indirect, many-light direct light); off:
   // lighting takes every effect's raw signal and the frame keeps no denoiser history.

@@ -1,6 +1,6 @@
 #pragma once
 // The tonemap operators of shaders/tonemap.comp.glsl, mirrored in C++ so unit tests can pin their
-// curves (0 → 0, monotonic, known points) and check the GPU pass against them (TECHNIQUES.md §16).
+// curves (0 → 0, monotonic, known points) and check the GPU pass against them (docs/techniques.md §19).
 // The shader is the product; keep both in step.
 #include <cstdint>
 #include <optional>

@@ -1,6 +1,6 @@
 #pragma once
 // Acceleration structures: one BLAS per unique mesh (one geometry per primitive), compacted; a TLAS
-// of instances whose custom index points into the instance table (TECHNIQUES.md §5).
+// of instances whose custom index points into the instance table (docs/techniques.md §5).
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -59,7 +59,7 @@ std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std
                                                AccelBuildStats* stats);
 
 // A TLAS over instances whose accelerationStructureReference are BLAS addresses, kept up to date
-// as instances move (TECHNIQUES.md §5): refitted (an UPDATE build, in place) when only transforms
+// as instances move (docs/techniques.md §5): refitted (an UPDATE build, in place) when only transforms
 // change, rebuilt when the instance count changes. The instance array lives in host-visible
 // memory, written when an update is recorded: the caller keeps the previous frame's use finished.
 class Tlas {

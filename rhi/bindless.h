@@ -1,6 +1,6 @@
 #pragma once
 // One global descriptor set (set 1 in every pipeline that samples scene textures) holding an array
-// of combined image samplers indexed by a material's slot (TECHNIQUES.md §18). Slots are written
+// of combined image samplers indexed by a material's slot (docs/techniques.md §24). Slots are written
 // before any command buffer that uses them is recorded, so no update-after-bind is needed.
 #include <cstdint>
 

@@ -1,6 +1,6 @@
 #pragma once
 // Ray-tracing pipelines and their shader binding tables. All traceRayEXT calls sit in raygen
-// (TECHNIQUES.md §0), so the recursion depth is 1 unless a pipeline asks for more.
+// (docs/techniques.md §0), so the recursion depth is 1 unless a pipeline asks for more.
 #include <cstdint>
 #include <string_view>
 #include <vector>

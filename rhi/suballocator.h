@@ -1,5 +1,5 @@
 #pragma once
-// Offset sub-allocator for carving device-memory blocks (DESIGN.md §1: no VMA, our own small
+// Offset sub-allocator for carving device-memory blocks (docs/architecture.md §1: no VMA, our own small
 // allocator). Knows nothing of Vulkan so it is tested exhaustively on the CPU.
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// VK_CHECK is fatal in every build (STYLE.md §7). Device loss and memory exhaustion end the process
+// VK_CHECK is fatal in every build (docs/style.md §7). Device loss and memory exhaustion end the process
 // with their documented exit codes (core/error.h) rather than an abort, so scripts can tell them apart.
 #include <volk.h>
 

@@ -4,7 +4,7 @@
 #include "lib/frame.glsl"
 #include "lib/ray_flags.glsl"
 
-// Ray-traced ambient occlusion from the G-buffer (TECHNIQUES.md §13): one cosine-weighted ray about
+// Ray-traced ambient occlusion from the G-buffer (docs/techniques.md §15): one cosine-weighted ray about
 // the shading normal per pixel per frame, from P offset along the geometric normal, as long as the
 // AO radius (lib/ao_ray.glsl); any shadow caster in between occludes (terminate on first hit, no
 // closest hit). With cosine sampling the AO is the plain mean of these visibilities.

@@ -3,7 +3,7 @@
 #include "lib/frame.glsl"
 #include "lib/hiz.glsl"
 
-// Two-phase GPU culling (TECHNIQUES.md §20, render/passes/cull.h): one invocation per draw, run
+// Two-phase GPU culling (docs/techniques.md §23, render/passes/cull.h): one invocation per draw, run
 // twice a frame. A draw whose object-space box lies wholly outside one clip plane is dropped (and
 // marked invisible). The early phase appends the rest that were visible last frame; the late phase
 // tests every frustum-visible draw against the pyramid of the early phase's depth, records the

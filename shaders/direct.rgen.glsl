@@ -10,7 +10,7 @@
 #include "lib/environment.glsl"
 #include "lib/light_ray.glsl"
 
-// Many-light direct lighting (TECHNIQUES.md §8), used when the scene has more lights than shadow
+// Many-light direct lighting (docs/techniques.md §10), used when the scene has more lights than shadow
 // layers: per pixel one light picked by importance (lib/light_select.glsl), one shadow ray towards a
 // uniform sample of its solid angle, and the light's shaded contribution divided by the pick's
 // probability, so the cost is one ray whatever the light count. Output: RGBA16F direct radiance

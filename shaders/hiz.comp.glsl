@@ -6,7 +6,7 @@
 // One level of the depth pyramid: level 0 copies the G-buffer depth of the early phase (this
 // frame's view and jitter), level k takes the MIN of the 2 × 2 texels of level k − 1 it covers
 // (reversed Z: the farthest depth, so a tile's value is never nearer than any pixel under it).
-// Never bilinear (TECHNIQUES.md §20).
+// Never bilinear (docs/techniques.md §23).
 layout(local_size_x = kHizGroupSize, local_size_y = kHizGroupSize) in;
 layout(push_constant, scalar) uniform Push { HizPush pc; };
 layout(set = 0, binding = 1) uniform sampler2D depthImage;

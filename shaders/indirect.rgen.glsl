@@ -14,7 +14,7 @@
 #include "lib/environment.glsl"
 #include "lib/light_ray.glsl"
 
-// One-bounce indirect diffuse from the G-buffer (TECHNIQUES.md §13): one cosine-weighted ray about
+// One-bounce indirect diffuse from the G-buffer (docs/techniques.md §16): one cosine-weighted ray about
 // the shading normal per pixel per frame. A hit is shaded with its emission, direct light from one
 // light picked by importance (shadow ray, divided by the pick probability) and the environment's
 // SH irradiance (no AO at hits); a miss sees the environment.

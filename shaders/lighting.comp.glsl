@@ -12,7 +12,7 @@
 // ray-traced shadow visibility (or, with many lights, the stochastic direct light of direct.rgen),
 // ray-traced AO (ambient and environment light only) and one-bounce indirect diffuse irradiance,
 // plus the traced specular light of mirrors, glossy surfaces and glass (opaque surfaces:
-// demodulated lobe-average radiance, × F0·A + B here, TECHNIQUES.md §11).
+// demodulated lobe-average radiance, × F0·A + B here, docs/techniques.md §13).
 // Output: linear HDR radiance (RGBA16F).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 1) uniform sampler2D depthTex;

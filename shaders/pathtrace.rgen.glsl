@@ -16,7 +16,7 @@
 #include "lib/pt_lights.glsl"
 #include "lib/pt_bsdf.glsl"
 
-// The reference: progressive unidirectional path tracing (DESIGN.md §3), one sample per pixel per
+// The reference: progressive unidirectional path tracing (docs/techniques.md §21), one sample per pixel per
 // frame, accumulated as a running mean (and mean square, for the variance) in fp32. At every vertex,
 // next-event estimation to every analytic light (sphere and sun lights by solid angle; more than
 // kAllLights lights: one picked uniformly), to one point of the emissive triangles and to one

@@ -3,7 +3,7 @@
 #include "lib/common.glsl"
 #include "lib/denoise.glsl"
 
-// Shadow denoiser, temporal step (TECHNIQUES.md §9), all light layers of a pixel in one
+// Shadow denoiser, temporal step (docs/techniques.md §11), all light layers of a pixel in one
 // invocation so the reprojection is paid once. History: R32F array, layers 0..L−1 the running
 // means, layer L the history length n (fp32, so the static running mean stays exact).
 //   α = max(1/(1+n), αmin); static: αmin = 0, no clamp; moving: αmin = 0.2 and the history is

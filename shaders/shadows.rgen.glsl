@@ -5,7 +5,7 @@
 #include "lib/ray_flags.glsl"
 #include "lib/lights.glsl"
 
-// RT shadows from the G-buffer (TECHNIQUES.md §8): one ray per pixel per light per frame, towards
+// RT shadows from the G-buffer (docs/techniques.md §9): one ray per pixel per light per frame, towards
 // a uniform sample of the light's solid angle. gl_LaunchIDEXT.z is the light's layer.
 // Output: 1 visible, 0 occluded; pixels facing away from the light (N·L <= 0) and background
 // pixels write 0, which lighting multiplies with a zero N·L anyway.
@@ -28,7 +28,7 @@ void main() {
     return;
   }
   visible = 0u;
-  // Opaque (no any-hit) only when no geometry needs alpha testing (TECHNIQUES.md §4).
+  // Opaque (no any-hit) only when no geometry needs alpha testing (docs/techniques.md §4).
   uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | sceneRayFlags();
   traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, tMax, 0);
   imageStore(outVisibility, ivec3(px, layer), vec4(float(visible)));

@@ -17,7 +17,7 @@
 #include "lib/specular_weight.glsl"
 #include "shared/vndf.h"
 
-// Ray-traced reflections and refractions (TECHNIQUES.md §10, §11): from every G-buffer pixel whose
+// Ray-traced reflections and refractions (docs/techniques.md §12, §13): from every G-buffer pixel whose
 // material is a mirror, glossy (one GGX VNDF sample per pixel up to the glossy threshold) or glass,
 // a loop in raygen (no recursion) follows the specular path for up to frame.maxSpecularBounces
 // traced rays (RenderSettings::maxDepth): Fresnel between reflection and refraction (chosen stochastically, so the

@@ -3,7 +3,7 @@
 #include "lib/frame.glsl"
 #include "lib/specular_weight.glsl"
 
-// The half-rate glossy checkerboard's other half (lib/specular_weight.glsl, TECHNIQUES.md §11):
+// The half-rate glossy checkerboard's other half (lib/specular_weight.glsl, docs/techniques.md §13):
 // every pixel specular.rgen left for this pass (alpha kHalfRateSkipped) becomes the mean of its
 // 4-neighbours on a half-rate glossy surface, all of which traced this frame (it was their turn:
 // specular.rgen skips a pixel only when it has one). In place: skipped pixels read only traced ones.

@@ -2,7 +2,7 @@
 #include "lib/common.glsl"
 #include "lib/denoise.glsl"
 
-// SVGF, temporal integration and variance estimate in one pass (TECHNIQUES.md §12).
+// SVGF, temporal integration and variance estimate in one pass (docs/techniques.md §14).
 // Integration of a radiance signal and the first two moments of its luminance. The moments blend
 // with the HISTORY's moments (not the current ones, the book's mistake). n counts the samples
 // including this one:

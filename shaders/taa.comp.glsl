@@ -2,7 +2,7 @@
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
 
-// Temporal anti-aliasing on linear HDR (TECHNIQUES.md §15): reproject the history with the motion
+// Temporal anti-aliasing on linear HDR (docs/techniques.md §18): reproject the history with the motion
 // of the closest texel in 3×3, sample it with Catmull–Rom, clip it to the current neighbourhood's
 // variance box (γ = 1) then clamp it to its min/max, and blend with anti-firefly weights.
 // Writes the next history, which is also the pass's output (ping-pong, no copy).

@@ -172,7 +172,7 @@ class ViewerSession {
       if (restart_ && !beginRun(size)) continue;
       const bool lastFrame = o_.frames && frame_ + 1 == o_.frames;
       const bool shoot = (lastFrame && !o_.screenshot.empty()) || st_.screenshot;
-      recordStats(renderFrame(moved, shoot), size);
+      recordStats(renderFrame(moved, shoot));
       Image8 captured;
       present(shoot ? &captured : nullptr);
       if (shoot)
@@ -340,7 +340,7 @@ class ViewerSession {
     return stats;
   }
 
-  void recordStats(const render::FrameStats& stats, VkExtent2D size) {
+  void recordStats(const render::FrameStats& stats) {
     st_.passes.clear();
     for (const auto& p : stats.passes) st_.passes.emplace_back(p.name, p.ms);
     recordHistory(st_.gpuHistory, float(stats.gpuMs));

@@ -1,5 +1,5 @@
 #pragma once
-// Two-phase GPU culling (TECHNIQUES.md §20; Aaltonen & Haar, SIGGRAPH 2015) of the raster
+// Two-phase GPU culling (docs/techniques.md §23; Aaltonen & Haar, SIGGRAPH 2015) of the raster
 // G-buffer's draws, in compute, drawn with vkCmdDrawIndirectCount:
 //   1. early cull: every GpuScene::Draw's box against this frame's clip volume; the frustum-visible
 //      draws that were visible last frame (a per-draw flag kept in a buffer) go to the early lists;

@@ -1,9 +1,9 @@
 #pragma once
-// The denoisers of the hybrid frame (DESIGN.md §3, passes 3 and 5): reusable compute passes over
+// The denoisers of the hybrid frame (docs/architecture.md §3, passes 3 and 5): reusable compute passes over
 // the G-buffer, with temporal history in the caller's graph histories (RenderGraph::history).
 //   writeSurface       the denoisers' compact view of the G-buffer (kept a frame longer)
-//   denoiseShadows     per-light visibility: temporal running mean + 3 à-trous iterations (§9)
-//   denoiseRadiance    SVGF for a radiance signal (reflections; later indirect diffuse) (§12)
+//   denoiseShadows     per-light visibility: temporal running mean + 3 à-trous iterations (docs/techniques.md §11)
+//   denoiseRadiance    SVGF for a radiance signal (reflections; later indirect diffuse) (docs/techniques.md §14)
 // Each is also available step by step (the tests compare every kernel with a CPU reference).
 // Parameters and push constants: shaders/shared/denoise.h. Pass names carry the à-trous step
 // ("shadow-atrous-2"), so per-pass timings keep the iterations apart.
@@ -32,7 +32,7 @@ namespace rayster::render {
 // See shaders/lib/denoise.glsl for the precision each field needs.
 inline constexpr VkFormat kSurfaceFormat = VK_FORMAT_R32G32_UINT;
 // Shadow history: layers 0..L−1 the running mean per light, layer L the history length n. fp32:
-// the static running mean is exact (1/(1+n) steps far above the ulp; 16 bits freeze it, §9).
+// the static running mean is exact (1/(1+n) steps far above the ulp; 16 bits freeze it, docs/techniques.md §11).
 inline constexpr VkFormat kShadowHistoryFormat = VK_FORMAT_R32_SFLOAT;
 inline constexpr VkFormat kShadowDenoisedFormat = VK_FORMAT_R16_SFLOAT;  // per light, for lighting
 // SVGF: colour history (rgb the running mean, a the history length n; fp32: the static exact
@@ -69,7 +69,7 @@ struct DenoiseInputs {
 
 // What happened since the previous frame.
 struct TemporalState {
-  bool moving = false;  // camera or objects moved: αmin 0.2, clamping, capped history (§9, §12)
+  bool moving = false;  // camera or objects moved: αmin 0.2, clamping, capped history (docs/techniques.md §11, §14)
   bool reset = false;   // first frame of a run or a camera cut: every history is dropped
 };
 

@@ -1,4 +1,4 @@
-// Pass 3: the shadow denoiser (TECHNIQUES.md §9). Temporal running mean per light with
+// Pass 3: the shadow denoiser (docs/techniques.md §11). Temporal running mean per light with
 // reprojection and disocclusion tests, then edge-aware à-trous at steps 1, 2, 4 (depth, normal and
 // variance-normalised value weights).
 #include "render/passes/denoise.h"

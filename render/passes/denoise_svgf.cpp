@@ -1,4 +1,4 @@
-// Pass 5: SVGF for radiance signals (TECHNIQUES.md §12): temporal integration of colour and
+// Pass 5: SVGF for radiance signals (docs/techniques.md §14): temporal integration of colour and
 // luminance moments with the variance estimate in the same pass, 5 edge-aware à-trous iterations
 // at steps 1 .. 16: 6 dispatches.
 #include "render/passes/denoise.h"

@@ -1,5 +1,5 @@
 #pragma once
-// The passes of the hybrid frame (DESIGN.md §3), one file each: functions from graph inputs to
+// The passes of the hybrid frame (docs/architecture.md §3), one file each: functions from graph inputs to
 // graph outputs. A pass declares what it reads and writes; the graph places the barriers.
 #include <cstdint>
 #include <string>
@@ -48,7 +48,7 @@ struct GBuffer {
   // (lib/common.glsl); with .a of `emissive` it gives F0 and F90 (lib/brdf.glsl).
   graph::ImageHandle specular;
   graph::ImageHandle id;        // R32_UINT instance row, kBackgroundId for sky
-  // RG16F uvCurrent − uvPrevious (unjittered; TECHNIQUES.md §2): the history of a pixel is at
+  // RG16F uvCurrent − uvPrevious (unjittered; docs/techniques.md §2): the history of a pixel is at
   // uv − motion. Camera and object motion for geometry; 0 on the background, whose (camera)
   // motion lib/motion.glsl computes from the matrices.
   graph::ImageHandle motion;

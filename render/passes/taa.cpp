@@ -1,4 +1,4 @@
-// Pass 8a: temporal anti-aliasing on linear HDR, before the tonemap (TECHNIQUES.md §15).
+// Pass 8a: temporal anti-aliasing on linear HDR, before the tonemap (docs/techniques.md §18).
 #include <algorithm>
 #include <cstring>
 

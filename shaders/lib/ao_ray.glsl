@@ -1,4 +1,4 @@
-// The ambient-occlusion ray of pixel `px` (TECHNIQUES.md §13), shared by ao.rgen and its raw-rate
+// The ambient-occlusion ray of pixel `px` (docs/techniques.md §15), shared by ao.rgen and its raw-rate
 // twin raw_ao.rgen so both trace exactly the same rays: cosine-weighted about the shading normal,
 // from P offset along the geometric normal, frame.aoRadius long. The includer declares depthTex and
 // normalTex. Returns false when no ray is traced; `value` is then the pixel's AO: 1 on the

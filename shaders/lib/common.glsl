@@ -41,7 +41,7 @@ vec4 vertexColor(GeometryRecord g, uint primitive, vec3 w) {
          unpackVertexColor(c.c[idx.i[base + 2u]]) * w.z;
 }
 
-// Octahedral normal encoding (TECHNIQUES.md §1).
+// Octahedral normal encoding (docs/techniques.md §1).
 vec2 octEncode(vec3 n) {
   vec2 p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
   return n.z >= 0.0 ? p : (1.0 - abs(p.yx)) * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(p, vec2(0.0)));
@@ -78,7 +78,7 @@ vec3 decodeSpecularTint(vec3 e) {
 vec4 encodeSpecular(vec4 specular) { return vec4(encodeSpecularTint(specular.rgb), specular.a); }
 vec4 decodeSpecular(vec4 texel) { return vec4(decodeSpecularTint(texel.rgb), texel.a); }
 
-// PCG hash (Jarzynski & Olano 2020); seeds go through the hash (TECHNIQUES.md §3).
+// PCG hash (Jarzynski & Olano 2020); seeds go through the hash (docs/techniques.md §3).
 uint pcg(uint v) {
   uint s = v * 747796405u + 2891336453u;
   uint w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;

@@ -1,5 +1,5 @@
 // Shared by the denoisers: the compact surface image (written by surface.comp), reprojection with
-// per-tap disocclusion tests (TECHNIQUES.md §2) and the à-trous edge-stopping weights (§12).
+// per-tap disocclusion tests (docs/techniques.md §2) and the à-trous edge-stopping weights (§14).
 // Every input is read with texelFetch: no filtering hardware, so formats and layouts stay free.
 #ifndef RAYSTER_DENOISE_GLSL
 #define RAYSTER_DENOISE_GLSL

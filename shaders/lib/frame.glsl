@@ -3,7 +3,7 @@
 #define RAYSTER_FRAME_GLSL
 layout(set = 0, binding = 0, scalar) uniform FrameBlock { FrameConstants frame; };
 
-// Light sources are pre-exposed (DESIGN.md §10): lights and emission are read × frame.exposure (and
+// Light sources are pre-exposed (docs/techniques.md §20): lights and emission are read × frame.exposure (and
 // the host scales ambient, environment and its SH the same way), so every radiance a pass computes
 // and stores is already exposed. fp16 targets and the firefly clamps then work in display-relative
 // units, whatever the scale of the scene's light units (a 100 000 lux sun or a 3 W bulb).

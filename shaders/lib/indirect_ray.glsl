@@ -1,4 +1,4 @@
-// The bounce ray of pixel `px` for one-bounce indirect diffuse (TECHNIQUES.md §13), shared by
+// The bounce ray of pixel `px` for one-bounce indirect diffuse (docs/techniques.md §16), shared by
 // indirect.rgen and its raw-rate twin raw_indirect.rgen: cosine-weighted about the shading normal,
 // from P offset along the geometric normal. The includer declares depthTex and normalTex. Returns
 // false when no ray is traced; `value` is then what the pass writes (0 on the background and with

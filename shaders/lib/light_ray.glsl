@@ -1,4 +1,4 @@
-// The shadow ray towards light `i` from a point P (TECHNIQUES.md §8): a uniform sample of the
+// The shadow ray towards light `i` from a point P (docs/techniques.md §9): a uniform sample of the
 // light's solid angle, offset along the geometric normal. One definition for every pass that traces
 // a shadow ray per shaded light (the bounce loop, many-light direct light, the indirect bounce) and
 // for their raw-rate twins (raw_*.rgen), so both trace exactly the same rays. Needs lib/lights.glsl.

@@ -1,4 +1,4 @@
-// Many lights (TECHNIQUES.md §8): one light per shading point, picked in proportion to its
+// Many lights (docs/techniques.md §10): one light per shading point, picked in proportion to its
 // importance w = power · cos(max(0, θi − θu)) / d² (θi: angle between the normal and the light's
 // centre, θu: the angle the light subtends), and the estimate divided by the probability of the
 // pick. With at most kSelectCandidates lights every light is a candidate and the pick is exact

@@ -14,7 +14,7 @@ void lightCentre(LightRecord l, vec3 p, out vec3 dir, out float dist) {
   }
 }
 
-// A direction towards a uniformly sampled point of the light's solid angle (TECHNIQUES.md §8):
+// A direction towards a uniformly sampled point of the light's solid angle (docs/techniques.md §9):
 // the cone a sphere subtends, the sun's angular cone, or the centre for a hard point light.
 // `dist` is the distance to travel before reaching the light's surface.
 vec3 sampleLightDirection(LightRecord l, vec3 p, vec2 u, out float dist) {

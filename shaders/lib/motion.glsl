@@ -1,4 +1,4 @@
-// Motion vectors (TECHNIQUES.md §2): uvCurrent − uvPrevious from unjittered matrices, so a static
+// Motion vectors (docs/techniques.md §2): uvCurrent − uvPrevious from unjittered matrices, so a static
 // scene has exactly zero motion under TAA jitter; the history of a pixel is fetched at uv − motion.
 #ifndef RAYSTER_MOTION_GLSL
 #define RAYSTER_MOTION_GLSL

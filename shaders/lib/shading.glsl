@@ -1,5 +1,5 @@
 // Shading of a surface point by direct light, emission and environment: one function for the
-// deferred lighting pass and for every hit of the specular bounce loop (TECHNIQUES.md §10).
+// deferred lighting pass and for every hit of the specular bounce loop (docs/techniques.md §12).
 // The includer defines `float lightVisibility(uint light, vec3 p, vec3 ng, inout uint rng)`:
 // the lighting pass reads the traced shadow image, the bounce loop traces a shadow ray; and
 // `void skipLightVisibility(inout uint rng)`, which draws the random numbers lightVisibility would

@@ -4,7 +4,7 @@
 #include "lib/common.glsl"
 #include "lib/denoise.glsl"
 
-// Shadow denoiser, one edge-aware à-trous iteration (TECHNIQUES.md §9): 5×5 B3-spline taps at
+// Shadow denoiser, one edge-aware à-trous iteration (docs/techniques.md §11): 5×5 B3-spline taps at
 // p + step·(i, j), depth and normal weights (σz = 1, σn = 128), computed once for every light
 // layer, times a per-layer value weight exp(−|v_p − v_q| / (σl·sqrt(var_p) + ε)) with the variance
 // of the temporal pass (not propagated: each iteration uses the temporal estimate). The per-layer

@@ -1,6 +1,6 @@
 #ifndef RAYSTER_SHADOW_RAY_GLSL
 #define RAYSTER_SHADOW_RAY_GLSL
-// The shadow ray of pixel `px` towards light `layer` (TECHNIQUES.md §8), shared by shadows.rgen and
+// The shadow ray of pixel `px` towards light `layer` (docs/techniques.md §9), shared by shadows.rgen and
 // its raw-rate twin raw_shadows.rgen so both trace exactly the same rays. The includer declares
 // depthTex and normalTex. Returns false when no ray is traced (background, light behind the surface).
 bool shadowRay(ivec2 px, uint layer, out vec3 origin, out vec3 dir, out float tMax) {

@@ -1,5 +1,5 @@
-// The specular path's scattering events and its first ray from a G-buffer pixel (TECHNIQUES.md §10,
-// §11), shared by specular.rgen and its raw-rate twin raw_specular.rgen so both trace the same first
+// The specular path's scattering events and its first ray from a G-buffer pixel (docs/techniques.md §12,
+// §13), shared by specular.rgen and its raw-rate twin raw_specular.rgen so both trace the same first
 // rays. The includer declares depthTex, normalTex, albedoTex, materialTex, emissiveTex and
 // specularGbufTex (the G-buffer's KHR_materials_specular target). Needs
 // lib/brdf.glsl, lib/dfg.glsl, lib/light_ray.glsl, lib/specular_weight.glsl and shared/vndf.h.
@@ -40,7 +40,7 @@ void scatter(inout vec3 dir, inout vec3 origin, inout vec3 beta, vec3 p, vec3 n,
   dir = normalize(next);
 }
 
-// The reflection off an opaque G-buffer surface, demodulated (TECHNIQUES.md §11): no Fresnel (lighting
+// The reflection off an opaque G-buffer surface, demodulated (docs/techniques.md §13): no Fresnel (lighting
 // applies F0·A + B). At most mirrorRoughness rough: the mirror direction, weight 1; rougher: one GGX
 // VNDF sample (Heitz 2018) weighted G2/G1 / (A + B), whose mean is 1. False when the sample leaves
 // below the surface (weight 0).

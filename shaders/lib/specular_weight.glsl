@@ -1,4 +1,4 @@
-// Which surfaces the specular pass traces (TECHNIQUES.md §10, §11): shared by the lighting pass
+// Which surfaces the specular pass traces (docs/techniques.md §12, §13): shared by the lighting pass
 // (lib/shading.glsl), the specular pass, its half-rate fill and its raw-rate twin. Needs lib/frame.glsl.
 #ifndef RAYSTER_SPECULAR_WEIGHT_GLSL
 #define RAYSTER_SPECULAR_WEIGHT_GLSL
@@ -7,7 +7,7 @@
 // rougher hits end it, shaded here.
 const float kMirrorRoughness = 0.1;
 // First surfaces rougher than FrameConstants::glossyThreshold fade from traced glossy reflections to
-// the environment approximation over kGlossyBlend (shared/types.h), so no seam shows (TECHNIQUES.md §11).
+// the environment approximation over kGlossyBlend (shared/types.h), so no seam shows (docs/techniques.md §13).
 
 bool tracedSpecular(float roughness, float transmission) {
   return roughness <= kMirrorRoughness || transmission > 0.0;
@@ -22,7 +22,7 @@ float tracedSpecularWeight(float roughness, float transmission) {
 }
 
 // Glossy first reflections at least this rough are traced on half the pixels each frame, in a
-// checkerboard that alternates with the frame (TECHNIQUES.md §11); the specular fill pass gives the
+// checkerboard that alternates with the frame (docs/techniques.md §13); the specular fill pass gives the
 // other half the mean of their traced neighbours. Their lobe already blurs the reflection over more
 // than the pixel's footprint at the distances that matter, and SVGF's temporal accumulation sees
 // every pixel traced every other frame. Smoother lobes (and mirrors, glass) trace at every pixel.

@@ -4,7 +4,7 @@
 #include "lib/common.glsl"
 #include "lib/denoise.glsl"
 
-// SVGF, one à-trous iteration (TECHNIQUES.md §12): 5×5 B3-spline taps at p + step·(i, j), weights
+// SVGF, one à-trous iteration (docs/techniques.md §14): 5×5 B3-spline taps at p + step·(i, j), weights
 // w_z (σz = 1), w_n (σn = 128) and w_l = exp(−|l_p − l_q| / (σl·sqrt(g3×3(var_p)) + ε)) (σl = 4).
 // Colour Σ h·w·c / Σ h·w; variance Σ (h·w)²·var / (Σ h·w)², passed on in .a. Mirrors and glass
 // (roughness ≤ kSharpRoughness: the surface texel's sharp flag, so nothing reads the material image)

@@ -1,4 +1,4 @@
-// Denoiser parameters and push constants shared by C++ and GLSL (STYLE.md §5): the compute passes
+// Denoiser parameters and push constants shared by C++ and GLSL (docs/style.md §5): the compute passes
 // of render/passes/denoise.h and the CPU reference in tests/render/test_denoise.cpp read the same
 // numbers. Every tunable is here, with its reason.
 #ifndef RAYSTER_SHARED_DENOISE_H
@@ -14,7 +14,7 @@ namespace rayster::gpu {
 RAYSTER_CONST uint kDenoiseMoving = 1u;  // camera or objects move: αmin, clamping, length cap
 RAYSTER_CONST uint kDenoiseReset = 2u;   // camera cut / first frame: ignore every history
 
-// Reprojection (TECHNIQUES.md §2). A bilinear tap of the previous frame is kept when it shows the
+// Reprojection (docs/techniques.md §2). A bilinear tap of the previous frame is kept when it shows the
 // same id, a normal within ~25° (dot ≥ 0.9, the book ch. 15) and a depth within 1 % of the distance
 // plus two pixels' worth of the depth slope (taps lie up to ~1.5 px from the reprojected centre).
 RAYSTER_CONST float kReprojectNormalDot = 0.9;
@@ -23,7 +23,7 @@ RAYSTER_CONST float kReprojectDepthSlopes = 2.0;
 // Taps whose bilinear weights sum below this count as no history (avoids dividing by ~0).
 RAYSTER_CONST float kReprojectMinWeight = 1.0e-3;
 
-// Shadow temporal (TECHNIQUES.md §9): α = max(1/(1+n), αmin). Static: αmin = 0, the exact running
+// Shadow temporal (docs/techniques.md §11): α = max(1/(1+n), αmin). Static: αmin = 0, the exact running
 // mean; n is kept in fp32, so the cap only bounds it (1/(1+n) stays far above fp32's resolution).
 RAYSTER_CONST float kShadowAlphaMinMoving = 0.2;
 RAYSTER_CONST float kShadowMaxLength = 65536.0;
@@ -36,7 +36,7 @@ RAYSTER_CONST float kShadowMaxLength = 65536.0;
 RAYSTER_CONST float kShadowMinTemporalVarianceLength = 4.0;
 RAYSTER_CONST float kShadowValueEpsilon = 0.01;
 
-// SVGF temporal (TECHNIQUES.md §12): n = min(n+1, cap), α = max(αmin, 1/n). Moving: cap 32 and
+// SVGF temporal (docs/techniques.md §14): n = min(n+1, cap), α = max(αmin, 1/n). Moving: cap 32 and
 // αmin 0.2 (SVGF paper). Static: α = 1/n, the exact running mean, up to the large cap.
 RAYSTER_CONST float kSvgfMaxLengthMoving = 32.0;
 RAYSTER_CONST float kSvgfMaxLengthStatic = 65536.0;

@@ -1,4 +1,4 @@
-// Shadow maps of the raster mode (render/shadow_setup.h), shared by C++ and GLSL (STYLE.md §5).
+// Shadow maps of the raster mode (render/shadow_setup.h), shared by C++ and GLSL (docs/style.md §5).
 // Every shadow view (a sun cascade, a spot light's frustum, a cube face of a point light) is one
 // square tile of a single D32 atlas; depth is reversed (near 1, far 0) like the camera's.
 #ifndef RAYSTER_SHARED_SHADOW_TYPES_H

@@ -1,4 +1,4 @@
-// Structs shared by C++ and GLSL (STYLE.md §5). Compiled as both; layouts are GLSL `scalar`
+// Structs shared by C++ and GLSL (docs/style.md §5). Compiled as both; layouts are GLSL `scalar`
 // (std430-like, vec3 packed to 12 bytes), checked on the C++ side with static_assert.
 #ifndef RAYSTER_SHARED_TYPES_H
 #define RAYSTER_SHARED_TYPES_H
@@ -212,13 +212,13 @@ struct FrameConstants {
   uint64_t materials;   // MaterialRecord[]
   uint64_t lights;      // LightRecord[]
   // clipFromWorld and worldFromClip above carry this frame's sub-pixel jitter (TAA), so raster and
-  // traced primaries follow it. Motion and reprojection use these unjittered ones (TECHNIQUES.md §2).
+  // traced primaries follow it. Motion and reprojection use these unjittered ones (docs/techniques.md §2).
   mat4 unjitteredClipFromWorld;
   mat4 prevClipFromWorld;  // unjittered, the previous frame's (equal to the current one after a reset)
   vec2 jitter;             // NDC offset added to clip x/y per w this frame: (0, 0) without TAA
   uint manyLights;         // 1: one light per shading point by importance (lib/light_select.glsl)
   float mirrorRoughness;   // first surfaces at most this rough reflect as perfect mirrors (negative: none)
-  float glossyThreshold;   // up to this roughness reflections are traced with GGX VNDF samples (§11)
+  float glossyThreshold;   // up to this roughness reflections trace GGX VNDF samples (docs/techniques.md §13)
   float aoRadius;          // RT AO ray length (world units)
   uint effectFlags;        // kEffect* bits
   uint dfgSlot;            // bindless slot of the split-sum DFG table (render/dfg.h)
@@ -237,7 +237,7 @@ struct FrameConstants {
   uint pad3;
 };
 
-// GPU culling (render/passes/cull.cpp, TECHNIQUES.md §20): one row per GpuScene::Draw, in order.
+// GPU culling (render/passes/cull.cpp, docs/techniques.md §23): one row per GpuScene::Draw, in order.
 RAYSTER_CONST uint kDrawSpheres = 1u;  // DrawRecord::flags: a sphere set (36-vertex boxes, count instances)
 RAYSTER_CONST uint kCullGroupSize = 64u;
 struct DrawRecord {

@@ -1,5 +1,5 @@
 // GGX visible-normal sampling (Heitz, "Sampling the GGX Distribution of Visible Normals", JCGT 2018)
-// and the height-correlated Smith terms of its weight (TECHNIQUES.md §11). Compiled as GLSL by the
+// and the height-correlated Smith terms of its weight (docs/techniques.md §13). Compiled as GLSL by the
 // specular pass and as C++ by the DFG table (render/dfg.cpp) and the unit tests, so the sampler the
 // tests check is the sampler the GPU runs. Everything is in the tangent frame: N = +z, V and L point
 // away from the surface, α = roughness².

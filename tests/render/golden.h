@@ -12,7 +12,7 @@
 
 namespace rayster::test {
 
-// DESIGN.md §6: at most 2/255 per channel on at least 99.9 % of the pixels.
+// docs/architecture.md §9: at most 2/255 per channel on at least 99.9 % of the pixels.
 inline constexpr int kGoldenTolerance = 2;
 inline constexpr double kGoldenFraction = 0.999;
 

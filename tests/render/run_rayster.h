@@ -15,6 +15,7 @@
 #include "core/image.h"
 #include "core/image_io.h"
 #include "core/metrics.h"
+#include "tests/support/test_dirs.h"
 
 namespace rayster::test {
 
@@ -23,7 +24,8 @@ struct RunResult {
   std::string output;  // stdout and stderr
 };
 
-// `prefix` runs the command (e.g. under xvfb-run); stdout and stderr are one pipe.
+// `prefix` runs the command (e.g. under xvfb-run); stdout and stderr are one pipe. The binary
+// inherits the test process's RAYSTER_CACHE_DIR (tests/support/test_dirs.h).
 inline RunResult runRaysterWith(const std::string& prefix, const std::string& args, const std::string& env) {
   std::string cmd = prefix + "env XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} RAYSTER_VALIDATION=1 " + env + " " +
                     std::string(RAYSTER_BINARY) + " " + args + " 2>&1";
@@ -46,15 +48,6 @@ inline RunResult runRayster(const std::string& args, const std::string& env = ""
 inline bool haveXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
 inline RunResult runUnderXvfb(const std::string& args, const std::string& env = "") {
   return runRaysterWith("xvfb-run -a -s '-screen 0 1024x768x24' ", args, env);
-}
-
-// A fresh folder per test under the system temp directory.
-inline std::filesystem::path testDir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  auto dir = std::filesystem::temp_directory_path() / "rayster-tests" / (std::string(info->test_suite_name()) + "." + info->name());
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
 }
 
 // Renders with `args` into dir/name.png, asserts success and a non-empty image of the given size.

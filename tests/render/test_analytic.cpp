@@ -60,7 +60,7 @@ TEST(AnalyticFresnel, BlackDielectricReflectsF0OfUniformEnvironment) {
   EXPECT_NEAR(r.hdr.pixel(0, 0)[0], 1.0f, 1e-3f) << "the environment itself should have radiance 1";
   EXPECT_NEAR(m.hdr, 0.04, 0.005) << "final HDR / L_env";
   // Opaque surfaces' reflection AOV is the incoming radiance with Fresnel divided out (the lighting
-  // pass multiplies by the lobe's albedo F0·A + B, TECHNIQUES.md §11): here the environment itself.
+  // pass multiplies by the lobe's albedo F0·A + B, docs/techniques.md §13): here the environment itself.
   EXPECT_NEAR(m.aov, 1.0, 0.01) << "reflection-denoised: the demodulated reflected radiance";
   std::printf("[analytic] black dielectric: HDR %.5f, reflection-denoised %.5f (expected 0.04) over %d px\n", m.hdr,
               m.aov, m.pixels);

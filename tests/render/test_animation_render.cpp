@@ -94,7 +94,7 @@ INSTANTIATE_TEST_SUITE_P(Producers, AnimationRender, ::testing::Values("raster",
 namespace rayster::test {
 namespace {
 
-// A moving occluder leaves no trail (TECHNIQUES.md §9): with a hard light every shadow ray of a
+// A moving occluder leaves no trail (docs/techniques.md §11): with a hard light every shadow ray of a
 // frame is exact, so the denoised shadow of the last frame of a moving sequence must agree with
 // that frame's raw shadow — a ghost of where the slider's shadow was shows up as a disagreement.
 TEST(AnimationRender, MovingShadowLeavesNoTrail) {

@@ -7,8 +7,6 @@
 #include <set>
 #include <sstream>
 
-#include <unistd.h>
-
 #include <nlohmann/json.hpp>
 
 #include "app/bench_stats.h"
@@ -39,11 +37,11 @@ void expectSummary(const json& s, const std::string& where) {
 }
 
 // One bench run shared by the tests below: two configurations (two sizes), 2 warm-up + 3 frames.
-// ctest runs each test in its own process, in parallel: each process has its own folder.
+// ctest runs each test in its own process, in parallel: each process has its own folder
+// (tests/support/test_dirs.h), and this one outlives the test that made it.
 const std::filesystem::path& benchRun() {
   static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / "rayster-tests" / ("bench-run-" + std::to_string(::getpid()));
-    std::filesystem::remove_all(d);
+    auto d = processDir() / "bench-run";
     std::filesystem::create_directories(d);
     RunResult r =
         runRayster("bench builtin:cornell --size 64x36,48x32 --primary rt --warmup 2 --frames 3 --raw-rays --json " +
@@ -216,8 +214,9 @@ TEST(Bench, SmokePlanRunsEverySweep) {
 }
 
 TEST(Bench, BadArgumentsFailCleanly) {
-  EXPECT_EQ(runRayster("bench --size 12 --json /tmp/x.json").exitCode, 2);
-  EXPECT_EQ(runRayster("bench --max-depth 9 --json /tmp/x.json").exitCode, 2);
+  const std::string json = (testDir() / "x.json").string();
+  EXPECT_EQ(runRayster("bench --size 12 --json " + json).exitCode, 2);
+  EXPECT_EQ(runRayster("bench --max-depth 9 --json " + json).exitCode, 2);
   EXPECT_EQ(runRayster("bench --plan /nonexistent.json").exitCode, 3);
 }
 

@@ -1,4 +1,4 @@
-// Ray-traced AO, one-bounce indirect diffuse and glossy reflections (TECHNIQUES.md §11, §13) on
+// Ray-traced AO, one-bounce indirect diffuse and glossy reflections (docs/techniques.md §13, §15, §16) on
 // small scenes written here (OBJ + scene file + EXR environment), through the real binary.
 #include <filesystem>
 #include <fstream>

@@ -1,4 +1,4 @@
-// Many lights (TECHNIQUES.md §8): one light per pixel picked by importance, divided by the pick's
+// Many lights (docs/techniques.md §10): one light per pixel picked by importance, divided by the pick's
 // probability, converges to the image that shades every light with its own shadow layer — for
 // exact selection (≤ 16 lights) and for resampled uniform candidates (more lights).
 #include <cmath>

@@ -1,4 +1,4 @@
-// Motion vectors (TECHNIQUES.md §2): exactly zero for a static camera, the analytic value for a
+// Motion vectors (docs/techniques.md §2): exactly zero for a static camera, the analytic value for a
 // known camera pan, from both G-buffer producers.
 #include <cmath>
 #include <filesystem>

@@ -1,4 +1,4 @@
-// Temporal anti-aliasing end to end (TECHNIQUES.md §15), through the real binary with validation:
+// Temporal anti-aliasing end to end (docs/techniques.md §18), through the real binary with validation:
 // a static view converges to a supersampled render, and a camera cut leaves no trace of the old view.
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,6 @@
 #pragma once
 // Builds small glTF documents in tests: nlohmann JSON plus one binary buffer, written as a .gltf
 // with a data URI, a .gltf with a .bin, or a .glb, into a per-test temporary folder.
-#include <unistd.h>
-
-#include <atomic>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -15,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/gltf_loader.h"
+#include "tests/support/test_dirs.h"
 
 namespace rayster::test {
 
@@ -38,19 +36,10 @@ inline std::string base64(const std::vector<uint8_t>& data) {
   return out;
 }
 
-// A temporary folder that removes itself.
+// A fresh folder of the running test (tests/support/test_dirs.h: removed when the test passes).
 class TempDir {
  public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ = std::filesystem::temp_directory_path() / fmt::format("rayster-gltf-{}-{}", getpid(), counter++);
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
+  TempDir() : path_(uniqueTestDir("gltf")) {}
   const std::filesystem::path& path() const { return path_; }
   std::filesystem::path write(const std::string& name, const std::string& bytes) const {
     std::filesystem::path p = path_ / name;

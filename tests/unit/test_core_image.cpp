@@ -15,26 +15,17 @@
 #include "core/image.h"
 #include "core/image_io.h"
 #include "core/log.h"
+#include "tests/support/test_dirs.h"
 
 namespace fs = std::filesystem;
 using namespace rayster;
 
 namespace {
 
-// A fresh folder per test, removed afterwards, so tests can run in parallel and leave nothing.
+// A fresh folder of the running test (tests/support/test_dirs.h: removed when the test passes).
 class TempDir {
  public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            (std::string("rayster-") + info->name() + "-" + std::to_string(::getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
+  TempDir() : path_(rayster::test::uniqueTestDir("image")) {}
   const fs::path& path() const { return path_; }
   std::vector<std::string> entries() const {
     std::vector<std::string> names;

@@ -1,6 +1,5 @@
 // EXR files Rayster writes hold only finite values: half channels clamp to the largest half
 // (65504), NaN becomes 0, and ExrPixels::Float keeps values past the half range.
-#include <unistd.h>
 
 #include <cfloat>
 #include <cmath>
@@ -13,6 +12,7 @@
 
 #include "core/image.h"
 #include "core/image_io.h"
+#include "tests/support/test_dirs.h"
 
 using namespace rayster;
 namespace fs = std::filesystem;
@@ -33,11 +33,7 @@ ImageF rowImage() {
   return image;
 }
 
-fs::path tempPath(const char* name) {
-  fs::path dir = fs::temp_directory_path() / ("rayster-exr-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+fs::path tempPath(const char* name) { return rayster::test::uniqueTestDir("exr") / name; }
 
 // The pixel type tinyexr reads from the file's header for every channel, or -1 if they differ.
 int channelPixelType(const fs::path& path) {

@@ -1,4 +1,4 @@
-// TAA jitter (TECHNIQUES.md §15): Halton(2,3), period 16, within ±0.5 px, applied as an NDC shift.
+// TAA jitter (docs/techniques.md §18): Halton(2,3), period 16, within ±0.5 px, applied as an NDC shift.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>

@@ -1,4 +1,4 @@
-// DESIGN.md §2: dependencies point down only. Libraries link only the layers below them, but a
+// docs/architecture.md §1: dependencies point down only. Libraries link only the layers below them, but a
 // header-only include would slip past the linker, so this test reads every #include.
 #include <filesystem>
 #include <fstream>

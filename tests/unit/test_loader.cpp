@@ -1,6 +1,4 @@
 // loadScene's dispatch, the defaults it adds to bare model files, and the shared path policy.
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -10,6 +8,7 @@
 
 #include "scene/builtin.h"
 #include "scene/loader.h"
+#include "tests/support/test_dirs.h"
 
 using namespace rayster;
 using namespace rayster::scene;
@@ -22,12 +21,8 @@ constexpr const char* kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 class LoaderTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / fmt::format("rayster-loader-{}-{}", getpid(), info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = rayster::test::testDir();  // removed when the test passes (tests/support/test_dirs.h)
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   std::string write(const std::string& name, const std::string& text) {
     std::ofstream(dir_ / name, std::ios::binary) << text;

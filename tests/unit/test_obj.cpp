@@ -1,6 +1,4 @@
 // The OBJ/MTL loader: geometry, materials, textures and what it must refuse.
-#include <unistd.h>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +9,7 @@
 #include "core/image_io.h"
 #include "scene/loader.h"
 #include "scene/obj_loader.h"
+#include "tests/support/test_dirs.h"
 
 using namespace rayster;
 using namespace rayster::scene;
@@ -26,16 +25,12 @@ bool validWithDefaults(Scene scene) {
   return status.ok();
 }
 
-// A fresh folder per test, removed afterwards, so fixtures never leak between tests or runs.
+// A fresh folder per test, removed when it passes, so fixtures never leak between tests or runs.
 class ObjTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / fmt::format("rayster-obj-{}-{}", getpid(), info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = rayster::test::testDir();  // removed when the test passes (tests/support/test_dirs.h)
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   fs::path write(const std::string& name, const std::string& text) {
     const fs::path path = dir_ / name;

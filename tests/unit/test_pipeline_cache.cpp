@@ -1,4 +1,4 @@
-// The on-disk pipeline cache (rhi/pipeline_cache.h, TECHNIQUES.md §19): header checks on synthetic
+// The on-disk pipeline cache (rhi/pipeline_cache.h, docs/techniques.md §25): header checks on synthetic
 // data, and on the device (lavapipe) a written cache that the next context loads, and damaged or
 // foreign files that are ignored without a crash and replaced.
 #include <algorithm>
@@ -12,11 +12,11 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include "render/passes/denoise.h"
 #include "rhi/context.h"
 #include "rhi/pipeline_cache.h"
+#include "tests/support/test_dirs.h"
 
 namespace rayster::rhi {
 namespace {
@@ -65,9 +65,10 @@ TEST(PipelineCacheHeader, AcceptsOnlyThisDevicesVersionOneHeader) {
 TEST(PipelineCacheHeader, PathFollowsTheEnvironment) {
   const char* saved = std::getenv("RAYSTER_CACHE_DIR");
   const std::string restore = saved ? saved : "";
-  setenv("RAYSTER_CACHE_DIR", "/tmp/rayster-cache-test", 1);
+  const fs::path chosen = rayster::test::processDir() / "cache-path-test";  // never created
+  setenv("RAYSTER_CACHE_DIR", chosen.c_str(), 1);
   const fs::path p = pipelineCachePath(testKey());
-  EXPECT_EQ(p.parent_path(), fs::path("/tmp/rayster-cache-test"));
+  EXPECT_EQ(p.parent_path(), chosen);
   EXPECT_NE(p.filename().string().find("0314253647"), std::string::npos) << p;  // the UUID in hex
   setenv("RAYSTER_CACHE_DIR", "off", 1);
   EXPECT_TRUE(pipelineCachePath(testKey()).empty());
@@ -77,8 +78,7 @@ TEST(PipelineCacheHeader, PathFollowsTheEnvironment) {
 class PipelineCacheDevice : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rayster-pcache-" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
+    dir_ = rayster::test::testDir() / "cache";  // made by the first save
     const char* saved = std::getenv("RAYSTER_CACHE_DIR");
     hadEnv_ = saved != nullptr;
     if (saved) savedEnv_ = saved;
@@ -86,7 +86,6 @@ class PipelineCacheDevice : public ::testing::Test {
   }
   void TearDown() override {
     if (hadEnv_) setenv("RAYSTER_CACHE_DIR", savedEnv_.c_str(), 1); else unsetenv("RAYSTER_CACHE_DIR");
-    fs::remove_all(dir_);
   }
   // A context that builds the denoisers' compute pipelines through the cache, then is destroyed
   // (which writes the cache). Returns the bytes the cache loaded at start-up, or -1 without a device.

@@ -1,6 +1,4 @@
 // JSON scene files and appendScene: composition, conversions, and what they must refuse.
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -14,6 +12,7 @@
 #include "scene/loader.h"
 #include "scene/merge.h"
 #include "scene/scene_file.h"
+#include "tests/support/test_dirs.h"
 
 using namespace rayster;
 using namespace rayster::scene;
@@ -34,13 +33,9 @@ constexpr const char* kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 class SceneFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / fmt::format("rayster-scenefile-{}-{}", getpid(), info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = rayster::test::testDir();  // removed when the test passes (tests/support/test_dirs.h)
     write("tri.obj", kTriangleObj);
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   fs::path write(const std::string& name, const std::string& text) {
     const fs::path path = dir_ / name;

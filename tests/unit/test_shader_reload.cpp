@@ -1,7 +1,5 @@
 // Shader hot reload (app/viewer/shader_reload.h): a broken edit reports glslc's error and keeps the
 // module; a valid edit installs new SPIR-V that shaders::get returns.
-#include <unistd.h>
-
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +10,7 @@
 
 #include "app/viewer/shader_reload.h"
 #include "shaders/embedded.h"
+#include "tests/support/test_dirs.h"
 
 namespace rayster::app {
 namespace {
@@ -26,9 +25,7 @@ std::string readText(const fs::path& p) {
 
 TEST(ViewerShaderReload, ErrorKeepsOldModuleAndValidChangeReplacesIt) {
   const fs::path src = fs::path(RAYSTER_SHADER_DIR);
-  const fs::path dir = fs::temp_directory_path() / ("rayster-reload-test-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = rayster::test::testDir();
   fs::copy(src, dir, fs::copy_options::recursive);
   const std::string name = "tonemap.comp";
   const fs::path file = dir / (name + ".glsl");
@@ -56,7 +53,6 @@ TEST(ViewerShaderReload, ErrorKeepsOldModuleAndValidChangeReplacesIt) {
   EXPECT_FALSE(now.empty());
   EXPECT_NE(now, embedded);
   shaders::setOverride(name, embedded);  // leave the process's shaders as built
-  fs::remove_all(dir);
 }
 
 } // namespace

@@ -1,4 +1,4 @@
-// The tonemap operators (TECHNIQUES.md §16): the C++ mirror's curves (0 → 0, monotonic, known
+// The tonemap operators (docs/techniques.md §19): the C++ mirror's curves (0 → 0, monotonic, known
 // points, the PBR Neutral guarantees), and the real GPU pass against that mirror on lavapipe, with
 // a constant radiance per pixel and the dither off, so the 8-bit values can be compared exactly.
 #include <cmath>
