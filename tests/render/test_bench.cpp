@@ -36,9 +36,10 @@ void expectSummary(const json& s, const std::string& where) {
   for (const char* k : {"median", "p5", "p95", "min", "max", "mean"}) expectFiniteNumber(s, k, where);
 }
 
-// One bench run shared by the tests below: two configurations (two sizes), 2 warm-up + 3 frames.
-// ctest runs each test in its own process, in parallel: each process has its own folder
-// (tests/support/test_dirs.h), and this one outlives the test that made it.
+// One bench run shared by the BenchRun tests: two configurations (two sizes), 2 warm-up + 3 frames.
+// ctest runs the BenchRun suite as one test, in one process (tests/CMakeLists.txt), so the run is
+// made once; a BenchRun test run alone makes it itself. It lives in the process's folder
+// (tests/support/test_dirs.h), since it outlives the test that made it.
 const std::filesystem::path& benchRun() {
   static const std::filesystem::path dir = [] {
     auto d = processDir() / "bench-run";
@@ -52,7 +53,7 @@ const std::filesystem::path& benchRun() {
   return dir;
 }
 
-TEST(Bench, JsonIsCompleteAndWellFormed) {
+TEST(BenchRun, JsonIsCompleteAndWellFormed) {
   const json j = json::parse(readText(benchRun() / "a.json"));
   EXPECT_EQ(j.value("schema", ""), "rayster-bench/1");
   for (const char* k : {"device", "driver", "commit", "date", "plan", "host"}) EXPECT_TRUE(j.contains(k)) << k;
@@ -121,7 +122,7 @@ TEST(Bench, JsonIsCompleteAndWellFormed) {
   EXPECT_NE(j["configs"][0]["id"], j["configs"][1]["id"]);
 }
 
-TEST(Bench, CsvParses) {
+TEST(BenchRun, CsvParses) {
   std::istringstream csv(readText(benchRun() / "a.csv"));
   std::string line;
   ASSERT_TRUE(std::getline(csv, line));
@@ -142,7 +143,7 @@ TEST(Bench, CsvParses) {
   EXPECT_GT(rows, 2u * 3u);
 }
 
-TEST(Bench, SvgHasBarsAndSweepLine) {
+TEST(BenchRun, SvgHasBarsAndSweepLine) {
   const std::string svg = readText(benchRun() / "a.svg");
   EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
   EXPECT_NE(svg.find("<svg xmlns=\"http://www.w3.org/2000/svg\""), std::string::npos);
@@ -160,7 +161,7 @@ TEST(Bench, SvgHasBarsAndSweepLine) {
                 svg.compare(p, 6, "&quot;") == 0);
 }
 
-TEST(Bench, CompareFlagsOnlyTheDoctoredPass) {
+TEST(BenchRun, CompareFlagsOnlyTheDoctoredPass) {
   const auto a = benchRun() / "a.json";
   RunResult same = runRayster("bench --compare " + a.string() + " " + a.string() + " --fail-on-change");
   EXPECT_EQ(same.exitCode, 0) << same.output;

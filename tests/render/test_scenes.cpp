@@ -20,10 +20,8 @@ Image8 renderScene(const std::filesystem::path& dir, const std::string& name, co
   return renderOk(dir, name, scene + " --primary raster --frames 8 --seed 1 " + extra, kW, kH);
 }
 
-TEST(Scenes, WhittedMatchesGolden) {
-  auto dir = testDir();
-  expectMatchesGolden(renderScene(dir, "whitted", "builtin:whitted"), "whitted-160x120", dir);
-}
+// builtin:whitted's golden: WhittedRun.FrameMatchesGolden (tests/render/test_effect_goldens.cpp),
+// which shares its render with the per-stage goldens.
 
 TEST(Scenes, SpheresMatchesGolden) {
   auto dir = testDir();
