@@ -3,6 +3,7 @@
 // one process was seen to slow later passes 2–4× on the H100), collects each child's JSON and
 // writes the results as JSON, CSV and SVG.
 #include "app/bench_command.h"
+#include "app/settings_cli.h"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -82,9 +83,11 @@ json passJson(const render::PassStats& p) {
           {"grays_per_s", graysPerSecond(p.info.rays, p.medianMs)}};
 }
 
-json configResult(const rhi::Context& ctx, const BenchConfig& c, const render::RenderOutput& out) {
+json configResult(const rhi::Context& ctx, const BenchConfig& c, const render::RenderSettings& s,
+                  const render::RenderOutput& out) {
   json j = c.toJson();
   j["id"] = c.id();
+  j["render_settings"] = settingsJson(s);  // every setting of the table, as this configuration ran
   j["ok"] = true;
   j["device"] = ctx.info().name;
   j["driver"] = ctx.info().driverInfo;
@@ -154,9 +157,10 @@ Result<json> runConfig(const BenchOptions& o, const BenchConfig& c) {
     s.shadowLights = c.shadowLights;
     s.rawRays = c.rawRays;
     s.culling = c.culling;
+    if (Status applied = applySettings(c.settings, s); !applied) return applied.error();
     auto out = (*renderer)->render(s);
     if (!out) return out.error();
-    result = configResult(**ctx, c, *out);
+    result = configResult(**ctx, c, s, *out);
   }
   if ((*ctx)->validationEnabled() && (*ctx)->validationErrors() > 0)
     return makeError(ExitCode::Failure, "{} Vulkan validation error(s)", (*ctx)->validationErrors());

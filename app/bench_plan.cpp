@@ -1,5 +1,7 @@
 #include "app/bench_plan.h"
 
+#include "render/settings_table.h"
+
 #include <cstdio>
 #include <fstream>
 
@@ -21,8 +23,10 @@ std::string BenchConfig::id() const {
   std::string s = scene.rfind("builtin:", 0) == 0 ? scene.substr(8) : scene;
   for (char& c : s)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-') c = '_';
-  return fmt::format("{}/{}x{}/{}/{}/d{}/l{}{}", s, width, height, mode, primary, maxDepth, shadowLights,
-                     culling ? "" : "/nocull");
+  std::string extra;
+  for (const auto& [name, value] : settings) extra += "/" + name + "=" + value;
+  return fmt::format("{}/{}x{}/{}/{}/d{}/l{}{}{}", s, width, height, mode, primary, maxDepth, shadowLights,
+                     culling ? "" : "/nocull", extra);
 }
 
 nlohmann::json BenchConfig::toJson() const {
@@ -30,7 +34,7 @@ nlohmann::json BenchConfig::toJson() const {
           {"width", width},     {"height", height},      {"mode", mode},
           {"primary", primary}, {"max_depth", maxDepth}, {"shadow_lights", shadowLights},
           {"warmup", warmup},   {"frames", frames},      {"seed", seed},
-          {"raw_rays", rawRays}, {"culling", culling}};
+          {"raw_rays", rawRays}, {"culling", culling},   {"settings", settings}};
 }
 
 Result<BenchConfig> BenchConfig::fromJson(const nlohmann::json& j) {
@@ -50,6 +54,7 @@ Result<BenchConfig> BenchConfig::fromJson(const nlohmann::json& j) {
     c.seed = j.at("seed").get<uint32_t>();
     c.rawRays = j.value("raw_rays", false);
     c.culling = j.value("culling", true);
+    if (j.contains("settings")) c.settings = j.at("settings").get<std::map<std::string, std::string>>();
     return c;
   } catch (const std::exception& e) {
     return makeError(ExitCode::BadArguments, "bench configuration: {}", e.what());
@@ -102,6 +107,7 @@ void appendSweep(BenchPlan& plan, const std::string& name, const BenchAxes& a) {
             c.seed = a.seed;
             c.rawRays = a.rawRays;
             c.culling = a.culling;
+            c.settings = a.settings;
             plan.configs.push_back(c);
           }
 }
@@ -118,8 +124,21 @@ void readList(const nlohmann::json& j, const char* key, std::vector<T>& out) {
 
 }  // namespace
 
+// Settings-table values a plan or the command line gives: known to the table, for bench, and valid.
+Status checkSettings(const std::map<std::string, std::string>& settings) {
+  for (const auto& [name, value] : settings) {
+    const render::Setting* s = render::findSetting(name);
+    if (!s || (s->uses & render::kUseBench) == 0)
+      return makeError(ExitCode::BadArguments, "\"{}\" is not a bench setting", name);
+    render::RenderSettings scratch;
+    if (Status ok = s->set(scratch, value); !ok) return ok;
+  }
+  return okStatus();
+}
+
 Result<BenchPlan> planFromAxes(const BenchAxes& axes) {
   if (auto s = checkAxes(axes); !s) return s.error();
+  if (auto s = checkSettings(axes.settings); !s) return s.error();
   BenchPlan plan;
   appendSweep(plan, "cli", axes);
   return plan;
@@ -154,7 +173,12 @@ Result<BenchPlan> loadPlan(const std::string& path) {
       a.frames = s.value("frames", a.frames);
       a.rawRays = s.value("raw_rays", a.rawRays);
       a.culling = s.value("culling", a.culling);
+      // "settings": {"ao": "off", ...}: the settings table's names and values, as on the command line.
+      if (s.contains("settings"))
+        for (const auto& [name, value] : s["settings"].items()) a.settings[name] = value.get<std::string>();
       if (auto st = checkAxes(a); !st) return makeError(ExitCode::BadInput, "plan '{}': {}", path, st.error().message);
+      if (auto st = checkSettings(a.settings); !st)
+        return makeError(ExitCode::BadInput, "plan '{}': {}", path, st.error().message);
       const size_t before = plan.configs.size();
       appendSweep(plan, s.value("name", fmt::format("sweep{}", before)), a);
       // A sweep may name its x axis ("triangles", "lights") when the scenes carry it.

@@ -2,6 +2,7 @@
 // `rayster bench` plans: sweeps of configurations (scene × size × mode × primary × bounce depth),
 // from the command line or a JSON plan (bench/plans/*.json). One configuration runs per process.
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct BenchConfig {
   uint32_t seed = 1;
   bool rawRays = false;    // also time the raw-rate twins of the primary and shadow rays
   bool culling = true;     // GPU culling of the raster G-buffer's draws (ids of "off" end in /nocull)
+  // Settings-table values (render/settings_table.h) by name, e.g. {"ao": "off"}: applied after the
+  // fields above; ids list them ("/ao=off").
+  std::map<std::string, std::string> settings;
   std::string id() const;  // unique within a plan, stable across runs (compare matches by it)
   nlohmann::json toJson() const;
   static Result<BenchConfig> fromJson(const nlohmann::json& j);
@@ -43,6 +47,7 @@ struct BenchAxes {
   uint32_t shadowLights = 8, warmup = 16, frames = 64, seed = 1;
   bool rawRays = false;
   bool culling = true;
+  std::map<std::string, std::string> settings;  // --ao off, ...: the settings table's bench options
 };
 
 bool parseSizeText(const std::string& text, uint32_t& w, uint32_t& h);

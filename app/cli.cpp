@@ -14,6 +14,7 @@
 #include "app/commands.h"
 #include "app/compare_command.h"
 #include "app/render_command.h"
+#include "app/settings_cli.h"
 #include "app/viewer/viewer.h"
 #include "core/error.h"
 #include "core/log.h"
@@ -63,8 +64,8 @@ void addGlobalOptions(CLI::App& cli, GlobalOptions& g) {
 struct RenderArgs {
   CLI::App* app = nullptr;
   RenderOptions options;
-  std::string size = "1280x720", primary = "auto", tonemap = "aces", taa = "on", mode = "hybrid", culling = "on";
-  std::string ao = "on", indirect, indirectRate = "quarter", denoise = "on";
+  std::string size = "1280x720";
+  SettingValues settings;  // the settings table's options given (render/settings_table.h)
   uint32_t spp = 0;
   std::vector<std::string> moveInstance;
 };
@@ -92,73 +93,17 @@ void addRenderImageOptions(CLI::App* render, RenderArgs& a) {
 // What the frame renders and how the camera and the scene move.
 void addRenderFrameOptions(CLI::App* render, RenderArgs& a) {
   RenderOptions& ro = a.options;
-  render->add_option("--max-depth", ro.settings.maxDepth,
-                     "Surface interactions along a path after the camera ray (default 8): the path tracer's "
-                     "vertices, and the G-buffer surface plus up to N-1 (at most 8) reflection/refraction rays "
-                     "in hybrid mode")
-      ->check(CLI::Range(1u, 64u));
-  render->add_option("--mode", a.mode,
-                     "hybrid (raster/traced G-buffer + ray-traced effects), pathtrace (the reference) or raster "
-                     "(no ray tracing)")
-      ->check(CLI::IsMember({"hybrid", "pathtrace", "raster"}));
   render->add_flag("--require-rt", ro.requireRt,
                    "Exit with code 5 on a device without ray-tracing pipelines instead of rendering with "
                    "--mode raster (the default fallback, announced in one line)");
-  render->add_option("--primary", a.primary, "G-buffer producer: raster, rt (traced primary rays) or auto")
-      ->check(CLI::IsMember({"raster", "rt", "auto"}));
-  render->add_option("--exposure", ro.settings.exposureEv, "Exposure in EV stops (default 0)");
-  render->add_option("--tonemap", a.tonemap, "Tonemap operator: aces (fitted ACES, default) or neutral (Khronos PBR Neutral)")
-      ->check(CLI::IsMember({"aces", "neutral"}));
-  render->add_option("--taa", a.taa,
-                     "Temporal anti-aliasing with sub-pixel jitter: on (default) or off; a static view converges to a "
-                     "supersampled image over --frames")
-      ->check(CLI::IsMember({"on", "off"}));
-  render->add_option("--culling", a.culling,
-                     "GPU frustum culling of the raster G-buffer's draws (indirect draws): on (default) or off")
-      ->check(CLI::IsMember({"on", "off"}));
   render->add_option("--camera", ro.settings.camera, "Camera name from the scene");
   render->add_option("--time", ro.settings.time, "Animation time of the first frame, in seconds (default 0)");
   render->add_flag("--pause{false}", ro.settings.animate,
                    "Hold glTF animations at --time instead of playing them at --path-fps");
-  render->add_option("--shadow-lights", ro.settings.shadowLights,
-                     "Lights with their own shadow layer (0-8, default 8); a scene with more lights picks one "
-                     "light per pixel by importance instead")
-      ->check(CLI::Range(0, 8));
   render->add_flag("--camera-path", ro.settings.cameraPath,
                    "Fly along the scene file's camera path, one frame per 1/--path-fps seconds");
   render->add_option("--path-fps", ro.settings.pathFps, "Frames per second of path playback (default 60)")
       ->check(CLI::Range(1.0f, 10000.0f));
-}
-
-// The ray-traced effects' parameters.
-void addRenderEffectOptions(CLI::App* render, RenderArgs& a) {
-  RenderOptions& ro = a.options;
-  render->add_option("--glossy-threshold", ro.settings.glossyThreshold,
-                     "Trace glossy reflections (one GGX VNDF sample per pixel) up to this roughness; rougher "
-                     "surfaces fade to the environment approximation over 0.1 more (default 0.5)")
-      ->check(CLI::Range(0.0f, 1.0f));
-  render->add_option("--mirror-roughness", ro.settings.mirrorRoughness,
-                     "Surfaces at most this rough reflect as perfect mirrors (default 0.1; negative: none, every "
-                     "opaque reflection is VNDF-sampled)")
-      ->check(CLI::Range(-1.0f, 1.0f));
-  render->add_option("--ao", a.ao, "Ray-traced ambient occlusion of ambient and environment light: on (default) or off")
-      ->check(CLI::IsMember({"on", "off"}));
-  render->add_option("--denoise", a.denoise,
-                     "The hybrid's denoisers of shadows, AO, reflections and indirect light: on (default) or off "
-                     "(lighting takes the raw one-sample signals)")
-      ->check(CLI::IsMember({"on", "off"}));
-  render->add_option("--ao-radius", ro.settings.aoRadius,
-                     "AO ray length in scene units (default 0.1 x the scene's bounding-box diagonal)")
-      ->check(CLI::PositiveNumber);
-  render->add_option("--indirect", a.indirect,
-                     "One-bounce ray-traced indirect diffuse: on or off (default: on for builtin:whitted and "
-                     "builtin:cornell, off otherwise)")
-      ->check(CLI::IsMember({"on", "off"}));
-  render->add_option("--indirect-rate", a.indirectRate,
-                     "Pixels the indirect diffuse traces per frame: quarter (default; one of each 2x2 block, "
-                     "rotating over 4 frames, the rest filled from traced neighbours of similar depth and normal) "
-                     "or full")
-      ->check(CLI::IsMember({"full", "quarter"}));
 }
 
 // Timings, memory, intermediate images, raw-rate twins, scripted edits, JSON.
@@ -188,7 +133,7 @@ void addRenderCommand(CLI::App& cli, RenderArgs& a) {
   a.app = cli.add_subcommand("render", "Render a scene to an image, headless");
   addRenderImageOptions(a.app, a);
   addRenderFrameOptions(a.app, a);
-  addRenderEffectOptions(a.app, a);
+  addSettingOptions(a.app, render::kUseRender, a.settings);  // mode, effects, tonemap, ...: the settings table
   addRenderReportOptions(a.app, a);
 }
 
@@ -197,23 +142,11 @@ int runRender(RenderArgs& a, const GlobalOptions& g) {
   RenderOptions& ro = a.options;
   if (!parseSize(a.size, ro.settings.width, ro.settings.height))
     return badArguments("--size must be WxH with 1..16384 each, got '" + a.size + "'");
-  ro.settings.primary = a.primary == "raster" ? render::Primary::Raster
-                        : a.primary == "rt"   ? render::Primary::Traced
-                                              : render::Primary::Auto;
-  ro.settings.mode = a.mode == "pathtrace" ? render::Mode::PathTrace
-                     : a.mode == "raster"  ? render::Mode::Raster
-                                           : render::Mode::Hybrid;
-  ro.settings.tonemap = *render::parseTonemapper(a.tonemap);  // CLI11 checked the name
-  ro.settings.taa = a.taa == "on";
-  ro.settings.culling = a.culling == "on";
+  if (Status applied = applySettings(a.settings, ro.settings); !applied) return badArguments(applied.error().message);
   if (a.spp > 0) ro.settings.frames = a.spp;
   ro.sizeGiven = a.app->count("--size") > 0;
   ro.framesGiven = a.app->count("--frames") > 0 || a.spp > 0;
   if (Status m = parseMoves(a.moveInstance, ro.settings.moves); !m) return badArguments(m.error().message);
-  ro.settings.ao = a.ao == "on";
-  ro.settings.denoise = a.denoise == "on";
-  if (!a.indirect.empty()) ro.settings.indirect = a.indirect == "on";
-  ro.settings.indirectRate = a.indirectRate == "full" ? render::IndirectRate::Full : render::IndirectRate::Quarter;
   ro.validation = g.validation;
   ro.device = g.device;
   ro.debugLabels = !g.noLabels;
@@ -240,6 +173,7 @@ CLI::App* addBenchCommand(CLI::App& cli, BenchOptions& bo) {
   bench->add_flag("--raw-rays", bo.axes.rawRays,
                   "Also trace the rays of every ray-traced pass (primary, shadows, AO, direct, indirect, specular) "
                   "with trivial shaders and report each pass's share of that raw ray rate (raw_fraction)");
+  addSettingOptions(bench, render::kUseBench, bo.axes.settings);  // applied to every configuration
   bench->add_option("--plan", bo.plan, "A JSON plan of sweeps (bench/plans/*.json) instead of the axes above");
   bench->add_option("--json", bo.json, "Results (default bench-out/bench.json); CSV and SVG beside it");
   bench->add_option("--csv", bo.csv, "CSV output (default: the --json path with .csv)");

@@ -14,6 +14,7 @@
 
 #include "app/build_info.h"
 #include "app/progress.h"
+#include "app/settings_cli.h"
 #include "core/image_io.h"
 #include "core/log.h"
 #include "rhi/context.h"
@@ -80,6 +81,7 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   j["taa"] = s.taa;
   j["culling"] = s.culling;
   j["indirect_rate"] = render::indirectRateName(s.indirectRate);
+  j["render_settings"] = settingsJson(s);  // every setting of the table (render/settings_table.h)
   if (out.visibleDraws >= 0) j["draws"] = {{"visible", out.visibleDraws}, {"total", out.totalDraws}};
   j["max_depth"] = s.maxDepth;
   if (out.rasterGBufferMs >= 0) j["auto"] = {{"raster_gbuffer_ms", out.rasterGBufferMs}, {"traced_gbuffer_ms", out.tracedGBufferMs}};

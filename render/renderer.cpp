@@ -12,6 +12,7 @@
 #include "render/jitter.h"
 #include "render/passes/cull.h"
 #include "render/renderer_impl.h"
+#include "render/settings_table.h"
 #include "rhi/memory.h"
 #include "shaders/shared/types.h"
 
@@ -305,6 +306,12 @@ Status Renderer::beginRun(const RenderSettings& settings) {
   if (settings.mode != Mode::Hybrid)
     return makeError(ExitCode::BadArguments, "--mode {} is not implemented yet", modeName(settings.mode));
   return impl_->beginRun(settings);
+}
+
+void Renderer::updateSettings(const RenderSettings& settings) {
+  if (!impl_->run) return;
+  for (const Setting& s : settingsTable())
+    if (!s.restarts) (void)s.set(impl_->run->settings, s.get(settings));  // the value came from a valid setting
 }
 
 FrameStats Renderer::renderFrame(const FrameControl& control) { return impl_->renderFrame(control); }

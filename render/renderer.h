@@ -184,6 +184,9 @@ class Renderer {
   // Incremental rendering, one frame at a time (the viewer). beginRun restarts every history.
   Status beginRun(const RenderSettings& settings);
   FrameStats renderFrame(const FrameControl& control);
+  // Takes the settings-table entries that do not restart accumulation (render/settings_table.h
+  // Setting::restarts, e.g. the tonemapper) into the current run, from the next frame on.
+  void updateSettings(const RenderSettings& settings);
   RenderOutput endRun();  // images of the last frame rendered with readback, stats over the run
   RenderOutput readbackImages();  // the same images (no stats) without ending the run
   // The last frame rendered with `present`: RGBA8 holding sRGB-encoded values, in

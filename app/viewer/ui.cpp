@@ -1,5 +1,7 @@
 #include "app/viewer/ui.h"
 
+#include "render/settings_table.h"
+
 #include <algorithm>
 
 #include <imgui.h>
@@ -99,6 +101,56 @@ ImDrawData* Ui::drawMessage(const std::string& message) {
   return ImGui::GetDrawData();
 }
 
+namespace {
+
+// The settings table's viewer entries of one group (render/settings_table.h): a checkbox per
+// switch, a combo per choice, a slider per number, each with the table's help as its tooltip.
+void settingWidgets(const char* group, render::RenderSettings& s) {
+  for (const render::Setting& setting : render::settingsTable()) {
+    if (setting.group != group || (setting.uses & render::kUseView) == 0) continue;
+    const std::string value = setting.get(s);
+    const char* label = setting.name.c_str();
+    std::string next = value;
+    switch (setting.kind) {
+      case render::SettingKind::Switch: {
+        bool on = value == "on";
+        if (ImGui::Checkbox(label, &on)) next = on ? "on" : "off";
+        break;
+      }
+      case render::SettingKind::Choice:
+        if (ImGui::BeginCombo(label, value.c_str())) {
+          for (const std::string& c : setting.choices)
+            if (ImGui::Selectable(c.c_str(), c == value)) next = c;
+          ImGui::EndCombo();
+        }
+        break;
+      case render::SettingKind::Integer: {
+        int v = std::stoi(value);
+        if (ImGui::SliderInt(label, &v, int(setting.min), int(std::min(setting.max, 64.0)))) next = std::to_string(v);
+        break;
+      }
+      case render::SettingKind::Real: {
+        // Unbounded ranges get a slider over a sensible span; the command line takes any value.
+        const float lo = float(std::max(setting.min, -20.0)), hi = float(std::min(setting.max, 20.0));
+        float v = std::stof(value);
+        if (ImGui::SliderFloat(label, &v, lo, hi, "%.2f")) next = std::to_string(v);
+        break;
+      }
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", setting.help.c_str());
+    if (next != value) (void)setting.set(s, next);  // widgets stay in range: set() cannot fail here
+  }
+}
+
+// Whether a change from `a` to `b` restarts accumulation (the table's `restarts`).
+bool restarts(const render::RenderSettings& a, const render::RenderSettings& b) {
+  for (const render::Setting& setting : render::settingsTable())
+    if (setting.restarts && setting.get(a) != setting.get(b)) return true;
+  return false;
+}
+
+} // namespace
+
 bool Ui::build(PanelState& st, CameraControl& camera, scene::Scene& scene, const std::string& device) {
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
@@ -120,17 +172,7 @@ bool Ui::build(PanelState& st, CameraControl& camera, scene::Scene& scene, const
               double(st.deviceBytes) / (1 << 20));
 
   if (ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen)) {
-    int mode = int(s.mode);
-    ImGui::Combo("mode", &mode, "hybrid\0pathtrace\0raster\0");
-    s.mode = render::Mode(mode);
-    int primary = s.primary == render::Primary::Traced ? 1 : 0;
-    ImGui::Combo("primary", &primary, "raster\0rt\0");
-    s.primary = primary == 1 ? render::Primary::Traced : render::Primary::Raster;
-    ImGui::Checkbox("TAA", &s.taa);
-    ImGui::SliderFloat("exposure (EV)", &s.exposureEv, -6.0f, 6.0f, "%.1f");
-    int tone = s.tonemap == render::Tonemapper::Neutral ? 1 : 0;
-    ImGui::Combo("tonemapper", &tone, "ACES\0PBR Neutral\0");
-    s.tonemap = tone == 1 ? render::Tonemapper::Neutral : render::Tonemapper::Aces;
+    settingWidgets("Render", s);
     ImGui::Checkbox("vsync", &st.vsync);
     // Every G-buffer channel and every pass's raw and denoised output (render::aovNames()).
     const auto& names = render::aovNames();
@@ -142,20 +184,7 @@ bool Ui::build(PanelState& st, CameraControl& camera, scene::Scene& scene, const
       ImGui::EndCombo();
     }
   }
-  if (ImGui::CollapsingHeader("Effects")) {
-    int shadowLights = int(s.shadowLights);
-    ImGui::SliderInt("shadow layers", &shadowLights, 0, 8);
-    s.shadowLights = uint32_t(shadowLights);
-    ImGui::SliderFloat("glossy threshold", &s.glossyThreshold, 0.0f, 1.0f, "%.2f");
-    ImGui::SliderFloat("mirror roughness", &s.mirrorRoughness, -0.01f, 1.0f, "%.2f");
-    ImGui::Checkbox("ambient occlusion", &s.ao);
-    if (s.ao) {
-      float radius = s.aoRadius > 0.0f ? s.aoRadius : 0.0f;
-      if (ImGui::SliderFloat("AO radius (0: auto)", &radius, 0.0f, 10.0f, "%.2f")) s.aoRadius = radius > 0.0f ? radius : -1.0f;
-    }
-    bool indirect = s.indirect.value_or(scene.indirectByDefault);
-    if (ImGui::Checkbox("indirect diffuse", &indirect)) s.indirect = indirect;
-  }
+  if (ImGui::CollapsingHeader("Effects")) settingWidgets("Effects", s);
   if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
     int mode = int(camera.mode);
     ImGui::Combo("control", &mode, "orbit\0fly (WASD/QE)\0");
@@ -220,10 +249,7 @@ bool Ui::build(PanelState& st, CameraControl& camera, scene::Scene& scene, const
   ImGui::End();
   // Render settings that change the image restart the run; vsync and the camera do not.
   s.aovs = st.debugView ? std::vector<std::string>{render::aovNames()[size_t(st.debugView - 1)]} : std::vector<std::string>{};
-  return before.aovs != s.aovs || before.mode != s.mode || before.primary != s.primary || before.taa != s.taa ||
-         before.exposureEv != s.exposureEv || before.tonemap != s.tonemap || before.shadowLights != s.shadowLights ||
-         before.glossyThreshold != s.glossyThreshold || before.mirrorRoughness != s.mirrorRoughness ||
-         before.ao != s.ao || before.aoRadius != s.aoRadius || before.indirect != s.indirect;
+  return before.aovs != s.aovs || restarts(before, s);
 }
 
 void recordHistory(std::deque<float>& history, float value) {

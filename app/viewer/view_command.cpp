@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/render_command.h"
+#include "app/settings_cli.h"
 #include "app/viewer/viewer.h"
 #include "core/error.h"
 
@@ -26,11 +27,9 @@ void addViewCommand(CLI::App& cli, ViewCommand& v) {
   view->add_flag("--hide-ui", o.hideUi, "Start with the panel hidden (Tab toggles it)");
   view->add_flag("--vsync{true},--no-vsync{false}", o.vsync, "Present with vsync (default) or without");
   view->add_option("--camera", o.settings.camera, "Start from this named camera");
-  view->add_option("--primary", v.primary, "G-buffer producer: raster (default) or rt")
-      ->check(CLI::IsMember({"raster", "rt"}));
-  view->add_option("--taa", v.taa, "Temporal anti-aliasing: on (default) or off")->check(CLI::IsMember({"on", "off"}));
-  view->add_option("--tonemap", v.tonemap, "aces (default) or neutral")->check(CLI::IsMember({"aces", "neutral"}));
-  view->add_option("--exposure", o.settings.exposureEv, "Exposure in EV stops");
+  // The viewer starts from raster primaries (auto would time both producers at every restart).
+  o.settings.primary = render::Primary::Raster;
+  addSettingOptions(view, render::kUseView, v.settings, o.settings);
   view->add_option("--seed", o.settings.seed, "Random seed");
   view->add_flag("--camera-path", o.settings.cameraPath, "Play the scene's camera path");
   view->add_option("--path-fps", o.settings.pathFps, "Frames per second of path playback (default 60)")
@@ -66,9 +65,7 @@ int viewCommand(ViewCommand& v, bool validation, const std::string& device, bool
   const auto& aovs = render::aovNames();
   if (!o.debugView.empty() && std::find(aovs.begin(), aovs.end(), o.debugView) == aovs.end())
     return bad("--debug-view: unknown view '" + o.debugView + "'");
-  o.settings.primary = v.primary == "rt" ? render::Primary::Traced : render::Primary::Raster;
-  o.settings.taa = v.taa == "on";
-  o.settings.tonemap = *render::parseTonemapper(v.tonemap);
+  if (Status applied = applySettings(v.settings, o.settings); !applied) return bad(applied.error().message);
   o.validation = validation;
   o.device = device;
   o.debugLabels = debugLabels;

@@ -160,7 +160,10 @@ class ViewerSession {
       if (const std::optional<int> failed = loadDroppedFile()) return failed;
       pollShaderReload();
       const float dt = tick();
-      if (ui_.build(st_, camera_, *scene_, vk_.info().name)) restart_ = true;
+      if (ui_.build(st_, camera_, *scene_, vk_.info().name))
+        restart_ = true;
+      else if (renderer_)
+        renderer_->updateSettings(st_.settings);  // the tonemapper and the like: no restart
       handleKeys();
       applyPanelRequests();
       const bool grabbing = updateSelection();

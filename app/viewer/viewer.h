@@ -2,6 +2,7 @@
 // `rayster view`: the interactive window. Scripted runs (--frames, --screenshot, --resize-at) make
 // it testable under Xvfb.
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -36,7 +37,8 @@ struct ViewOptions {
 struct ViewCommand {
   CLI::App* app = nullptr;
   ViewOptions options;
-  std::string size = "1280x720", primary = "raster", taa = "on", tonemap = "aces";
+  std::string size = "1280x720";
+  std::map<std::string, std::string> settings;  // the settings table's options given (app/settings_cli.h)
   std::vector<std::string> resizeAt;
   std::vector<std::string> moveInstance;
 };

@@ -1,0 +1,53 @@
+#include "app/settings_cli.h"
+
+#include <CLI/CLI.hpp>
+
+namespace rayster::app {
+
+void addSettingOptions(CLI::App* command, render::SettingUse use, SettingValues& values,
+                       const render::RenderSettings& defaults) {
+  for (const render::Setting& s : render::settingsTable()) {
+    if ((s.uses & use) == 0) continue;
+    const std::string name = s.name;
+    command
+        ->add_option_function<std::string>(
+            "--" + name, [&values, name](const std::string& v) { values[name] = v; },
+            s.help + " (default " + s.get(defaults) + ")")
+        ->type_name(s.typeText())
+        ->check(CLI::Validator(
+            [&s](std::string& v) -> std::string {
+              render::RenderSettings scratch;
+              const Status ok = s.set(scratch, v);
+              if (ok) return std::string();
+              const std::string prefix = "--" + s.name + ": ";  // CLI11 names the option itself
+              const std::string& m = ok.error().message;
+              return m.rfind(prefix, 0) == 0 ? m.substr(prefix.size()) : m;
+            },
+            ""));
+  }
+}
+
+Status applySettings(const SettingValues& values, render::RenderSettings& settings) {
+  for (const auto& [name, value] : values) {
+    const render::Setting* s = render::findSetting(name);
+    if (!s) return makeError(ExitCode::BadArguments, "unknown setting '{}'", name);
+    if (Status ok = s->set(settings, value); !ok) return ok;
+  }
+  return okStatus();
+}
+
+nlohmann::json settingsJson(const render::RenderSettings& settings) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const render::Setting& s : render::settingsTable()) {
+    const std::string v = s.get(settings);
+    switch (s.kind) {
+      case render::SettingKind::Switch: j[s.name] = v == "on"; break;
+      case render::SettingKind::Integer: j[s.name] = std::stoll(v); break;
+      case render::SettingKind::Real: j[s.name] = std::stod(v); break;
+      case render::SettingKind::Choice: j[s.name] = v; break;
+    }
+  }
+  return j;
+}
+
+} // namespace rayster::app

@@ -1,0 +1,186 @@
+#include "render/settings_table.h"
+
+#include <charconv>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "render/tonemap_curves.h"
+
+namespace rayster::render {
+namespace {
+
+std::string realText(double v) {
+  std::string t = fmt::format("{:.4f}", v);
+  while (t.back() == '0') t.pop_back();
+  if (t.back() == '.') t.pop_back();
+  return t;
+}
+
+Status parseNumber(const Setting& s, std::string_view text, double& out) {
+  const std::string t(text);
+  char* end = nullptr;
+  out = std::strtod(t.c_str(), &end);
+  if (t.empty() || *end != '\0' || !std::isfinite(out))
+    return makeError(ExitCode::BadArguments, "--{}: '{}' is not a number", s.name, t);
+  if (s.kind == SettingKind::Integer && out != std::floor(out))
+    return makeError(ExitCode::BadArguments, "--{}: '{}' is not a whole number", s.name, t);
+  if (out < s.min || out > s.max)
+    return makeError(ExitCode::BadArguments, "--{}: {} is outside {}", s.name, t, s.typeText());
+  return okStatus();
+}
+
+Status checkChoice(const Setting& s, std::string_view text) {
+  for (const std::string& c : s.choices)
+    if (c == text) return okStatus();
+  return makeError(ExitCode::BadArguments, "--{}: '{}' is not one of {}", s.name, std::string(text), s.typeText());
+}
+
+// Entries by kind: each binds a RenderSettings member.
+Setting onOff(std::string name, std::string group, std::string help, bool RenderSettings::*field,
+              uint32_t uses = kUseAll, bool restarts = true) {
+  Setting s{std::move(name), SettingKind::Switch, std::move(help), {"on", "off"}, 0, 0, std::move(group), uses, restarts};
+  s.get = [field](const RenderSettings& r) { return std::string(r.*field ? "on" : "off"); };
+  s.set = [field, s](RenderSettings& r, std::string_view t) -> Status {
+    if (Status c = checkChoice(s, t); !c) return c;
+    r.*field = t == "on";
+    return okStatus();
+  };
+  return s;
+}
+
+template <class T>
+Setting number(std::string name, SettingKind kind, std::string group, std::string help, T RenderSettings::*field,
+               double min, double max, uint32_t uses = kUseAll, bool restarts = true) {
+  Setting s{std::move(name), kind, std::move(help), {}, min, max, std::move(group), uses, restarts};
+  s.get = [field, kind](const RenderSettings& r) {
+    return kind == SettingKind::Integer ? std::to_string(r.*field) : realText(double(r.*field));
+  };
+  s.set = [field, s](RenderSettings& r, std::string_view t) -> Status {
+    double v = 0;
+    if (Status n = parseNumber(s, t, v); !n) return n;
+    r.*field = T(v);
+    return okStatus();
+  };
+  return s;
+}
+
+// A choice between enumerators, by the names `names` gives them (in the enum's order).
+template <class E>
+Setting choice(std::string name, std::string group, std::string help, E RenderSettings::*field,
+               std::vector<std::string> names, uint32_t uses = kUseAll, bool restarts = true) {
+  Setting s{std::move(name), SettingKind::Choice, std::move(help), names, 0, 0, std::move(group), uses, restarts};
+  s.get = [field, names](const RenderSettings& r) { return names[size_t(r.*field)]; };
+  s.set = [field, s, names](RenderSettings& r, std::string_view t) -> Status {
+    if (Status c = checkChoice(s, t); !c) return c;
+    for (size_t i = 0; i < names.size(); ++i)
+      if (names[i] == t) r.*field = E(i);
+    return okStatus();
+  };
+  return s;
+}
+
+std::vector<Setting> makeTable() {
+  std::vector<Setting> t;
+  const uint32_t renderView = kUseRender | kUseView;  // bench sweeps these as axes of its own
+  t.push_back(choice("mode", "Render",
+                     "hybrid (raster/traced G-buffer + ray-traced effects), pathtrace (the reference) or raster "
+                     "(no ray tracing)",
+                     &RenderSettings::mode, {"hybrid", "pathtrace", "raster"}, renderView));
+  t.push_back(choice("primary", "Render", "G-buffer producer: raster, rt (traced primary rays) or auto (the faster)",
+                     &RenderSettings::primary, {"raster", "rt", "auto"}, renderView));
+  t.push_back(number("exposure", SettingKind::Real, "Render", "Exposure in EV stops", &RenderSettings::exposureEv,
+                     -40.0, 40.0));
+  t.push_back(choice("tonemap", "Render", "Tonemap operator: aces (fitted ACES) or neutral (Khronos PBR Neutral)",
+                     &RenderSettings::tonemap, {"aces", "neutral"}, kUseAll, /*restarts*/ false));
+  t.push_back(onOff("taa", "Render",
+                    "Temporal anti-aliasing with sub-pixel jitter; a static view converges to a supersampled image",
+                    &RenderSettings::taa));
+  t.push_back(onOff("culling", "Render", "GPU frustum culling of the raster G-buffer's draws (indirect draws)",
+                    &RenderSettings::culling));
+  t.push_back(number("max-depth", SettingKind::Integer, "Effects",
+                     "Surface interactions along a path after the camera ray: the path tracer's vertices, and the "
+                     "G-buffer surface plus up to N-1 (at most 8) reflection/refraction rays in hybrid mode",
+                     &RenderSettings::maxDepth, 1, 64, renderView));
+  t.push_back(number("shadow-lights", SettingKind::Integer, "Effects",
+                     "Lights with their own shadow layer; a scene with more lights picks one light per pixel by "
+                     "importance instead",
+                     &RenderSettings::shadowLights, 0, 8, renderView));
+  t.push_back(onOff("ao", "Effects", "Ray-traced ambient occlusion of ambient and environment light",
+                    &RenderSettings::ao));
+  {
+    // 0 (the default) means the scene-relative radius; RenderSettings keeps that as a negative value.
+    Setting s{"ao-radius", SettingKind::Real,
+              "AO ray length in scene units; 0: 0.1 x the scene's bounding-box diagonal",
+              {}, 0.0, 1e9, "Effects", kUseAll, true};
+    s.get = [](const RenderSettings& r) { return r.aoRadius > 0.0f ? realText(r.aoRadius) : std::string("0"); };
+    s.set = [s](RenderSettings& r, std::string_view text) -> Status {
+      double v = 0;
+      if (Status n = parseNumber(s, text, v); !n) return n;
+      r.aoRadius = v > 0.0 ? float(v) : -1.0f;
+      return okStatus();
+    };
+    t.push_back(std::move(s));
+  }
+  {
+    Setting s{"indirect", SettingKind::Choice,
+              "One-bounce ray-traced indirect diffuse: on, off or auto (on for builtin:whitted and builtin:cornell, "
+              "off otherwise)",
+              {"auto", "on", "off"}, 0, 0, "Effects", kUseAll, true};
+    s.get = [](const RenderSettings& r) { return std::string(!r.indirect ? "auto" : *r.indirect ? "on" : "off"); };
+    s.set = [s](RenderSettings& r, std::string_view text) -> Status {
+      if (Status c = checkChoice(s, text); !c) return c;
+      r.indirect = text == "auto" ? std::nullopt : std::optional<bool>(text == "on");
+      return okStatus();
+    };
+    t.push_back(std::move(s));
+  }
+  t.push_back(choice("indirect-rate", "Effects",
+                     "Pixels the indirect diffuse traces per frame: quarter (one of each 2x2 block, rotating over 4 "
+                     "frames, the rest filled from traced neighbours of similar depth and normal) or full",
+                     &RenderSettings::indirectRate, {"full", "quarter"}));
+  t.push_back(number("glossy-threshold", SettingKind::Real, "Effects",
+                     "Trace glossy reflections (one GGX VNDF sample per pixel) up to this roughness; rougher surfaces "
+                     "fade to the environment approximation over 0.1 more",
+                     &RenderSettings::glossyThreshold, 0.0, 1.0));
+  t.push_back(number("mirror-roughness", SettingKind::Real, "Effects",
+                     "Surfaces at most this rough reflect as perfect mirrors (negative: none, every opaque reflection "
+                     "is VNDF-sampled)",
+                     &RenderSettings::mirrorRoughness, -1.0, 1.0));
+  t.push_back(onOff("denoise", "Effects",
+                    "The hybrid's denoisers of shadows, AO, reflections and indirect light; off: lighting takes the "
+                    "raw one-sample signals",
+                    &RenderSettings::denoise));
+  return t;
+}
+
+} // namespace
+
+std::string Setting::defaultText() const { return get(RenderSettings{}); }
+
+std::string Setting::typeText() const {
+  switch (kind) {
+    case SettingKind::Switch:
+    case SettingKind::Choice: {
+      std::string t;
+      for (const std::string& c : choices) t += (t.empty() ? "" : "|") + c;
+      return t;
+    }
+    case SettingKind::Integer: return fmt::format("{}..{}", int64_t(min), int64_t(max));
+    case SettingKind::Real: return realText(min) + ".." + (max >= 1e9 ? std::string("") : realText(max));
+  }
+  return "";
+}
+
+const std::vector<Setting>& settingsTable() {
+  static const std::vector<Setting> table = makeTable();
+  return table;
+}
+
+const Setting* findSetting(std::string_view name) {
+  for (const Setting& s : settingsTable())
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+} // namespace rayster::render

@@ -1,0 +1,51 @@
+#pragma once
+// Every user-facing render setting, described once (docs/architecture.md, "Settings"): its name,
+// kind, range or choices, default, help and whether changing it restarts accumulation. The table
+// drives the command line of `render`, `view` and `bench` (app/settings_cli.cpp), the viewer's panel
+// (app/viewer/ui.cpp) and the "settings" object of the JSON outputs; a new setting is one entry here.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/error.h"
+#include "render/renderer.h"
+
+namespace rayster::render {
+
+enum class SettingKind {
+  Switch,   // on | off
+  Choice,   // one of `choices`
+  Integer,  // in [min, max]
+  Real,     // in [min, max]
+};
+
+// Which commands take a setting.
+enum SettingUse : uint32_t { kUseRender = 1u, kUseView = 2u, kUseBench = 4u, kUseAll = 7u };
+
+struct Setting {
+  std::string name;  // "ao": the option --ao, the JSON key, the panel's label
+  SettingKind kind = SettingKind::Switch;
+  std::string help;  // for --help and the panel's tooltip
+  std::vector<std::string> choices;  // Switch: {"on", "off"}; Choice: its names
+  double min = 0.0, max = 0.0;       // Integer and Real: the accepted range
+  std::string group;                 // the panel's section: "Render" or "Effects"
+  uint32_t uses = kUseAll;
+  // Changing it restarts accumulation: the viewer starts a new run (histories, frame count).
+  bool restarts = true;
+  // The value as text ("on", "quarter", "0.5"), and setting it from text (already range-checked or
+  // not: set() checks and fails with a one-line cause).
+  std::function<std::string(const RenderSettings&)> get;
+  std::function<Status(RenderSettings&, std::string_view)> set;
+
+  // The default (a default-constructed RenderSettings' value).
+  std::string defaultText() const;
+  // "on|off", "aces|neutral", "0..8", "-1..1": what --help shows as the option's type.
+  std::string typeText() const;
+};
+
+const std::vector<Setting>& settingsTable();
+const Setting* findSetting(std::string_view name);
+
+} // namespace rayster::render
