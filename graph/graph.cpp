@@ -88,6 +88,14 @@ BufferHandle RenderGraph::importBuffer(std::string name, const rhi::Buffer* buff
   return {uint32_t(buffers_.size() - 1)};
 }
 
+AccelHandle RenderGraph::importAccel(std::string name, VkAccelerationStructureKHR accel, const rhi::Buffer* buffer,
+                                     ResourceState* state) {
+  RAYSTER_ASSERT(accel != VK_NULL_HANDLE, "imported acceleration structure is null");
+  const BufferHandle h = importBuffer(std::move(name), buffer, state);
+  buffers_[h.id].accel = accel;
+  return {h};
+}
+
 RenderGraph::History RenderGraph::history(const std::string& name, const rhi::ImageDesc& desc, uint32_t tags) {
   RAYSTER_ASSERT(ctx_ && histories_, "history() needs a Vulkan context and a history store");
   rhi::ImageDesc d = desc;
@@ -103,6 +111,7 @@ void RenderGraph::addPass(std::string name, const std::function<void(PassBuilder
   passes_.push_back({std::move(name), {}, std::move(execute), false, {}});
   PassBuilder builder(*this, uint32_t(passes_.size() - 1));
   setup(builder);
+  checkBindings(passes_.back());
 }
 
 
@@ -249,6 +258,7 @@ void RenderGraph::execute(VkCommandBuffer cmd, rhi::TimestampPool* timers) {
     }
     uint32_t timer = timers ? timers->begin(cmd, pass.name) : UINT32_MAX;
     if (timer != UINT32_MAX) timedPasses_.push_back(pp.pass);
+    if (pass.pipeline) bindPipeline(cmd, pass);
     PassContext pc(*this, cmd, pp.pass);
     pass.execute(pc);
     if (timers) timers->end(cmd, timer);

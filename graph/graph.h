@@ -21,7 +21,9 @@
 
 namespace rayster::rhi {
 class Context;
+class Pipeline;
 class TimestampPool;
+struct ShaderBinding;
 } // namespace rayster::rhi
 
 namespace rayster::graph {
@@ -33,6 +35,13 @@ struct ImageHandle {
 struct BufferHandle {
   uint32_t id = UINT32_MAX;
   bool valid() const { return id != UINT32_MAX; }
+};
+// An acceleration structure (the TLAS): tracked through the buffer that backs it, so a build or
+// refit pass (Use::AccelStructBuildWrite) and the ray-tracing passes that read it get their barriers
+// from the graph like any other resource.
+struct AccelHandle {
+  BufferHandle buffer;
+  bool valid() const { return buffer.valid(); }
 };
 
 class RenderGraph;
@@ -55,6 +64,22 @@ struct PassInfo {
 
 class PassBuilder {
  public:
+  // The pipeline this pass runs, bound (with set 0 and, when it uses it, the global set 1) by the
+  // graph right before the pass's execute function. Name the descriptors with bind().
+  PassBuilder& pipeline(const rhi::Pipeline& pipeline);
+  // Binds the descriptor the pipeline's shaders call `name` (rhi/spirv_reflect.h) and records the
+  // access it implies: sampled images are read; storage images and buffers are read, written or both
+  // as the GLSL says (readonly / writeonly / neither); an acceleration structure is traced against.
+  // Sampled images use the graph's default sampler (setGlobals) unless given one. Every set-0
+  // descriptor of the pipeline must be bound (else the program stops, naming the pass and the
+  // descriptor); a name the compiled shaders do not declare (optimised away) binds nothing.
+  PassBuilder& bind(std::string_view name, ImageHandle image, VkSampler sampler = VK_NULL_HANDLE);
+  PassBuilder& bind(std::string_view name, BufferHandle buffer);
+  PassBuilder& bind(std::string_view name, AccelHandle accel);
+  // A buffer that does not change while the frame runs (the frame constants, the scene's tables):
+  // bound, not tracked.
+  PassBuilder& bind(std::string_view name, const rhi::Buffer& constant);
+
   ImageHandle read(ImageHandle image, Use use);
   ImageHandle write(ImageHandle image, Use use);
   BufferHandle read(BufferHandle buffer, Use use);
@@ -69,6 +94,7 @@ class PassBuilder {
  private:
   friend class RenderGraph;
   PassBuilder(RenderGraph& graph, uint32_t pass) : graph_(graph), pass_(pass) {}
+  const rhi::ShaderBinding* declared(std::string_view name) const;
   RenderGraph& graph_;
   uint32_t pass_;
 };
@@ -78,6 +104,19 @@ class PassContext {
   VkCommandBuffer cmd;
   const rhi::Image& image(ImageHandle h) const;
   const rhi::Buffer& buffer(BufferHandle h) const;
+  // The pass's pipeline (PassBuilder::pipeline), already bound with its descriptors.
+  const rhi::Pipeline& pipeline() const;
+  // Push constants for the pass's pipeline: T is the block's shared struct (shaders/shared/push.h),
+  // checked against the size the shader declares.
+  template <class T>
+  void push(const T& value) const {
+    pushBytes(&value, uint32_t(sizeof(T)));
+  }
+  void pushBytes(const void* data, uint32_t bytes) const;
+  // For passes that switch pipelines while they record (the draw loops of the raster G-buffer and
+  // the shadow maps): binds `pipeline` with the graph's globals (its shaders may declare no other
+  // set-0 descriptor); push to it with pipeline.push(cmd, value).
+  void bindWithGlobals(const rhi::Pipeline& pipeline) const;
 
  private:
   friend class RenderGraph;
@@ -109,6 +148,23 @@ class RenderGraph {
   // External images/buffers keep their state in `state` across frames (histories, outputs).
   ImageHandle importImage(std::string name, const rhi::Image* image, ResourceState* state, uint32_t tags = 0);
   BufferHandle importBuffer(std::string name, const rhi::Buffer* buffer, ResourceState* state);
+  // An acceleration structure backed by `buffer` (its state in `state`, across frames).
+  AccelHandle importAccel(std::string name, VkAccelerationStructureKHR accel, const rhi::Buffer* buffer,
+                          ResourceState* state);
+  // What every pass with a pipeline gets without naming it: the global descriptor set (set 1, the
+  // bindless textures) for pipelines whose shaders use it, the sampler of sampled images bound
+  // without one, and buffers that stay constant for the frame, bound wherever a pipeline declares
+  // their name (the frame constants' "FrameBlock").
+  struct Constant {
+    std::string name;
+    const rhi::Buffer* buffer = nullptr;
+  };
+  struct Globals {
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;
+    std::vector<Constant> constants;
+  };
+  void setGlobals(Globals globals) { globals_ = globals; }
   // A temporal history of the HistoryStore (graph/history.h): `next` is written this frame (as
   // image `name`), `previous` holds what the frame before wrote ("<name>-prev"); `frames` counts the
   // frames accumulated in it, 0 when it is empty (first frame, reset, new size) and must not be read.
@@ -161,13 +217,25 @@ class RenderGraph {
     uint32_t resource;
     Use use;
   };
+  // One descriptor of set 0, as bound by PassBuilder::bind.
+  struct Descriptor {
+    uint32_t binding = 0;
+    VkDescriptorType type = VK_DESCRIPTOR_TYPE_MAX_ENUM;
+    uint32_t image = UINT32_MAX, buffer = UINT32_MAX;
+    VkSampler sampler = VK_NULL_HANDLE;
+    const rhi::Buffer* constant = nullptr;
+  };
   struct Pass {
     std::string name;
     std::vector<Access> accesses;
     Execute execute;
     bool sideEffect = false;
     PassInfo info;
+    const rhi::Pipeline* pipeline = nullptr;
+    std::vector<Descriptor> descriptors;
   };
+  void bindPipeline(VkCommandBuffer cmd, const Pass& pass) const;
+  void checkBindings(Pass& pass) const;  // every set-0 descriptor of the pass's pipeline is bound
   struct ImageEntry {
     std::string name;
     rhi::ImageDesc desc;
@@ -179,6 +247,7 @@ class RenderGraph {
     std::string name;
     const rhi::Buffer* buffer = nullptr;
     ResourceState* external = nullptr;
+    VkAccelerationStructureKHR accel = VK_NULL_HANDLE;  // importAccel
   };
   std::vector<uint32_t> livePasses() const;  // culling: the passes that run, in order
   // Plans on copies of the resource states and returns the states after the frame.
@@ -188,6 +257,7 @@ class RenderGraph {
   rhi::Context* ctx_;
   TransientPool* pool_;
   HistoryStore* histories_;
+  Globals globals_;
   std::vector<Pass> passes_;
   std::vector<ImageEntry> images_;
   std::vector<BufferEntry> buffers_;

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "core/error.h"
+#include "graph/resource_state.h"
 #include "rhi/accel.h"
 #include "rhi/bindless.h"
 #include "rhi/resources.h"
@@ -62,6 +63,7 @@ struct GpuScene {
   std::vector<rhi::AccelerationStructure> blases;
   rhi::Tlas tlas;
   std::vector<VkAccelerationStructureInstanceKHR> tlasInstances;  // as built; updated when instances move
+  graph::ResourceState tlasState;  // the TLAS as a graph resource (render/passes/passes.h beginFrameGraph)
   std::vector<Draw> draws;  // raster: one per (instance, primitive or sphere set)
   rhi::Buffer drawRecords;  // gpu::DrawRecord[], one per draw, in order (render/passes/cull.cpp)
   // The culling pass's per-frame buffers and their graph states (render/passes/cull.h). Shared

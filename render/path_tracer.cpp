@@ -14,9 +14,6 @@
 
 namespace rayster::render {
 
-PathTracer::PathTracer(rhi::Context& ctx, VkDescriptorSetLayout textures)
-    : pipeline_(createPathTracePipeline(ctx, textures)) {}
-
 Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTraceResources& r,
                                         const std::function<void(uint32_t)>& writeConstants) {
   if (s.frames == 0) return makeError(ExitCode::BadArguments, "--mode pathtrace needs at least one sample");
@@ -40,11 +37,12 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
     writeConstants(f);
     r.histories.beginFrame(f, f == 0);
     graph::RenderGraph graph(&r.ctx, &r.transients, &r.histories);
-    FrameInputs in{r.pipelines, r.scene, r.constants, r.nearest, r.linear, {s.width, s.height}, r.scene.bindless->set()};
+    const graph::AccelHandle tlas = beginFrameGraph(graph, r.scene, r.constants, r.nearest);
+    FrameInputs in{r.pipelines, r.scene, r.constants, r.nearest, r.linear, {s.width, s.height}, tlas};
     const graph::RenderGraph::History meanHistory = graph.history("pt-mean", desc, kRadianceImage);
     const graph::RenderGraph::History momentsHistory = graph.history("pt-moments", desc);
     const PathAccumulation acc{meanHistory.previous, momentsHistory.previous, meanHistory.next, momentsHistory.next};
-    const graph::ImageHandle mean = tracePaths(graph, in, pipeline_, acc);
+    const graph::ImageHandle mean = tracePaths(graph, in, acc);
     if (f + 1 == s.frames) {
       const graph::ImageHandle ldr = tonemap(graph, in, mean, {s.tonemap, s.seed});
       readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));

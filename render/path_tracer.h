@@ -15,6 +15,7 @@
 namespace rayster::rhi {
 class Buffer;
 class CommandList;
+class PipelineLibrary;
 class Sampler;
 class TimestampPool;
 } // namespace rayster::rhi
@@ -27,13 +28,12 @@ class TransientPool;
 namespace rayster::render {
 
 struct GpuScene;
-struct Pipelines;
 
 // What the path tracer borrows from the renderer for a render.
 struct PathTraceResources {
   rhi::Context& ctx;
-  const GpuScene& scene;
-  const Pipelines& pipelines;
+  GpuScene& scene;
+  rhi::PipelineLibrary& pipelines;
   const rhi::Buffer& constants;
   const rhi::Sampler& nearest;
   const rhi::Sampler& linear;
@@ -45,13 +45,9 @@ struct PathTraceResources {
 
 class PathTracer {
  public:
-  PathTracer(rhi::Context& ctx, VkDescriptorSetLayout textures);
   // `writeConstants(f)` fills the FrameConstants of sample f (frameIndex f, no jitter).
   Result<RenderOutput> render(const RenderSettings& s, const PathTraceResources& r,
                               const std::function<void(uint32_t)>& writeConstants);
-
- private:
-  rhi::RayTracingPipeline pipeline_;
 };
 
 // Per-pass GPU time statistics (median, min, p95, the samples) from each frame's timings, in

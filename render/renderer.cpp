@@ -54,7 +54,7 @@ const char* primaryName(Primary p) {
 }
 
 Renderer::Impl::Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
-    : ctx(c), scene(s), gpu(std::move(g)), pipelines(Pipelines::create(c, gpu.bindless->layout())),
+    : ctx(c), scene(s), gpu(std::move(g)), pipelines(c, gpu.bindless->layout()),
       nearest(c, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       linear(c, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       constants(c, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, rhi::MemoryUsage::Upload,
@@ -146,7 +146,8 @@ double Renderer::Impl::timeProducer(const RenderSettings& s, Primary p) {
   for (int run = 0; run < 2; ++run) {
     ms = 0;
     graph::RenderGraph graph(&ctx, &transients);
-    FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, gpu.bindless->set()};
+    const graph::AccelHandle tlas = beginFrameGraph(graph, gpu, constants, nearest);
+    FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, tlas};
     GBuffer gb = p == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
     graph.addPass("keep", [&](graph::PassBuilder& b) {
       b.read(gb.normals, graph::Use::SampledCompute);
@@ -209,7 +210,7 @@ Result<RenderOutput> Renderer::Impl::renderPathTraced(const RenderSettings& s) {
   if (!cam) return cam.error();
   if (s.cameraPath || (scene.animated() && s.animate))
     log::info("--mode pathtrace renders the static camera and the rest pose");
-  if (!pathTracer) pathTracer = std::make_unique<PathTracer>(ctx, gpu.bindless->layout());
+  if (!pathTracer) pathTracer = std::make_unique<PathTracer>();
   manyLights = false;
   const PathTraceResources r{ctx, gpu, pipelines, constants, nearest, linear, transients, histories, commands, timers};
   auto out = pathTracer->render(s, r, [&](uint32_t f) {
@@ -339,8 +340,7 @@ void Renderer::setInstanceTransform(uint32_t sceneInstance, const glm::mat4& wor
 
 void Renderer::reloadPipelines() {
   impl_->ctx.waitIdle();
-  impl_->pipelines = Pipelines::create(impl_->ctx, impl_->gpu.bindless->layout());
-  impl_->rawPipelines.reset();
+  impl_->pipelines.clear();  // the next frame creates the pipelines it uses from the new shaders
   impl_->pathTracer.reset();
 }
 

@@ -53,7 +53,8 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   r.prevClipFromWorld = writeConstants(s, camera, jitter, cut ? nullptr : &r.prevClipFromWorld);
   r.prevCamera = camera;
   graph::RenderGraph graph(&ctx, &transients, &histories);
-  const FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, gpu.bindless->set()};
+  const graph::AccelHandle tlas = beginFrameGraph(graph, gpu, constants, nearest);
+  const FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, tlas};
   bool moving = s.cameraPath || control.moving;
   {
     const bool moved = motion.update(gpu, r.animated, s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0).moved;
@@ -61,8 +62,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
     moving = moving || moved || r.movedBefore;
     r.movedBefore = moved;
     if (motion.takeTlasRefit(!rasterMode) && !rasterMode)  // the raster mode refits when it leaves
-      graph.addPass("tlas-update", [](graph::PassBuilder& b) { b.sideEffect(); },
-                    [this](graph::PassContext& pc) { gpu.tlas.update(pc.cmd, gpu.tlasInstances); });
+      updateTlas(graph, in, gpu.tlas.prepare(gpu.tlasInstances));
   }
 
   const GBuffer gb = out.primaryUsed == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
@@ -149,7 +149,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   // Every run starts without history, and so does a camera cut (the history store resets them all),
   // and a history that is new (an effect just switched on, a resize); while the camera or an
   // object moves, the denoisers keep short histories.
-  const DenoiseInputs dn{pipelines.denoise, nearest.handle(), in.size};
+  const DenoiseInputs dn{pipelines, nearest.handle(), in.size};
   const graph::ImageHandle motion = gb.motion;
   graph::RenderGraph::History surfaceHistory;
   SurfacePair surface;
@@ -197,11 +197,10 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     if (ao) o.ao = denoised;
   }
   if (s.rawRays) {
-    if (!rawPipelines) rawPipelines = RawRayPipelines::create(ctx, gpu.bindless->layout());
-    traceRawPrimary(graph, in, *rawPipelines);
-    traceRawShadows(graph, in, gb, lights, *rawPipelines);
+    traceRawPrimary(graph, in);
+    traceRawShadows(graph, in, gb, lights);
     o.rawTwins = traceRawTwins(graph, in, gb, {ao, manyLights, indirect, specularPass}, indirectQuarter(s),
-                               lightsPerHit(), *rawPipelines);
+                               lightsPerHit());
   }
   if (specularPass) {
     o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit());

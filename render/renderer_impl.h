@@ -50,7 +50,7 @@ struct Renderer::Impl {
   rhi::Context& ctx;
   const scene::Scene& scene;
   GpuScene gpu;
-  Pipelines pipelines;
+  rhi::PipelineLibrary pipelines;  // created on first use by the passes (rhi/pipeline_library.h)
   rhi::Sampler nearest, linear;
   rhi::Buffer constants;
   graph::TransientPool transients;
@@ -62,7 +62,6 @@ struct Renderer::Impl {
   graph::HistoryStore histories;
   NeutralImages neutral;  // what lighting reads for an effect that records no pass
   const SpecularSurfaces specular;  // whether any material is smooth or transmissive enough to trace
-  std::optional<RawRayPipelines> rawPipelines;  // created on the first render with rawRays
   RasterFrame raster;  // the raster mode's passes (render/raster_frame.h)
   uint32_t frameIndex = 0;
   InstanceMotion motion;  // animation and edits (render/instance_motion.h)

@@ -217,7 +217,7 @@ void Tlas::allocate(uint32_t count) {
                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "tlas-scratch");
 }
 
-void Tlas::record(VkCommandBuffer cmd, bool refit) {
+void Tlas::record(VkCommandBuffer cmd, bool refit) const {
   VkAccelerationStructureGeometryKHR geo = tlasGeometry(instances_.address());
   VkAccelerationStructureBuildGeometryInfoKHR info = tlasBuildInfo(&geo);
   info.mode = refit ? VK_BUILD_ACCELERATION_STRUCTURE_MODE_UPDATE_KHR : VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
@@ -227,18 +227,7 @@ void Tlas::record(VkCommandBuffer cmd, bool refit) {
   info.scratchData.deviceAddress = alignUp(scratch_.address(), align);
   VkAccelerationStructureBuildRangeInfoKHR range{count_, 0, 0, 0};
   const VkAccelerationStructureBuildRangeInfoKHR* rangePtr = &range;
-  // The previous frame's traversal (and build) must finish before this build rewrites the TLAS.
-  VkMemoryBarrier2 before{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  before.srcStageMask = VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR | VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR;
-  before.srcAccessMask = VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
-  before.dstStageMask = VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR;
-  before.dstAccessMask = VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
-  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dep.memoryBarrierCount = 1;
-  dep.pMemoryBarriers = &before;
-  vkCmdPipelineBarrier2(cmd, &dep);
   vkCmdBuildAccelerationStructuresKHR(cmd, 1, &info, &rangePtr);
-  asBuildBarrier(cmd, VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR);
 }
 
 Tlas Tlas::build(Context& ctx, std::span<const VkAccelerationStructureInstanceKHR> instances, AccelBuildStats* stats) {
@@ -248,16 +237,16 @@ Tlas Tlas::build(Context& ctx, std::span<const VkAccelerationStructureInstanceKH
   std::memcpy(t.instances_.mapped(), instances.data(), instances.size_bytes());
   OneShot cmd(ctx);
   t.record(cmd, false);
+  asBuildBarrier(cmd, VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR);
   cmd.submitAndWait();
   if (stats) stats->tlasBytes = t.as_.size();
   return t;
 }
 
-bool Tlas::update(VkCommandBuffer cmd, std::span<const VkAccelerationStructureInstanceKHR> instances) {
+bool Tlas::prepare(std::span<const VkAccelerationStructureInstanceKHR> instances) {
   const bool refit = instances.size() == count_;
   if (!refit) allocate(uint32_t(instances.size()));  // the old structure is retired, not freed under the GPU
   std::memcpy(instances_.mapped(), instances.data(), instances.size_bytes());
-  record(cmd, refit);
   return refit;
 }
 

@@ -23,6 +23,7 @@ class AccelerationStructure {
   VkAccelerationStructureKHR handle() const { return handle_; }
   VkDeviceAddress address() const { return address_; }
   VkDeviceSize size() const { return buffer_.size(); }
+  const Buffer& buffer() const { return buffer_; }
 
  private:
   friend AccelerationStructure createAccelerationStructure(Context&, VkAccelerationStructureTypeKHR, VkDeviceSize,
@@ -67,15 +68,18 @@ class Tlas {
   Tlas() = default;
   // Builds and waits.
   static Tlas build(Context& ctx, std::span<const VkAccelerationStructureInstanceKHR> instances, AccelBuildStats* stats);
-  // Records the refit (same count) or rebuild (other count) into `cmd`, followed by a barrier that
-  // makes the result visible to ray-tracing shaders. Returns true for a refit.
-  bool update(VkCommandBuffer cmd, std::span<const VkAccelerationStructureInstanceKHR> instances);
+  // A frame's update, in two steps. prepare() writes the instances (host side, while the frame is
+  // recorded) and, when their count changed, allocates a new structure (so handle() changes before any
+  // pass binds it); returns true for a refit. record() records the build or refit: the render graph's
+  // "tlas-update" pass, whose barriers the graph derives (the TLAS is a graph resource, AccelHandle).
+  bool prepare(std::span<const VkAccelerationStructureInstanceKHR> instances);
+  void record(VkCommandBuffer cmd, bool refit) const;
   VkAccelerationStructureKHR handle() const { return as_.handle(); }
+  const Buffer& buffer() const { return as_.buffer(); }  // the storage behind the structure
   VkDeviceSize size() const { return as_.size(); }
 
  private:
   void allocate(uint32_t count);
-  void record(VkCommandBuffer cmd, bool refit);
   Context* ctx_ = nullptr;
   AccelerationStructure as_;
   Buffer instances_;  // host-visible VkAccelerationStructureInstanceKHR[capacity]

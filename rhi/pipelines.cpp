@@ -17,6 +17,8 @@ Pipeline& Pipeline::operator=(Pipeline&& o) noexcept {
     setLayout_ = std::exchange(o.setLayout_, VK_NULL_HANDLE);
     bindPoint_ = o.bindPoint_;
     stages_ = o.stages_;
+    interface_ = std::move(o.interface_);
+    name_ = std::move(o.name_);
   }
   return *this;
 }
@@ -43,31 +45,67 @@ VkShaderModule createShaderModule(Context& ctx, std::string_view name) {
   return module;
 }
 
-void PipelineBuilder::makeLayout(Context& ctx, Pipeline& p, std::span<const Binding> bindings, uint32_t pushBytes,
-                                 VkDescriptorSetLayout globalSet) {
+ShaderInterface reflectShader(std::string_view name, VkShaderStageFlagBits stage) {
+  auto words = shaders::get(name);
+  if (words.empty()) fatal(("unknown embedded shader: " + std::string(name)).c_str(), __FILE__, __LINE__);
+  std::string error;
+  auto iface = reflectSpirv(words, stage, &error);
+  if (!iface) fatal((std::string(name) + ": " + error).c_str(), __FILE__, __LINE__);
+  return *iface;
+}
+
+void PipelineBuilder::addStage(Pipeline& p, std::string_view shader, VkShaderStageFlagBits stage) {
+  std::string error;
+  if (!mergeInterface(p.interface_, reflectShader(shader, stage), &error))
+    fatal((std::string(shader) + ": " + error).c_str(), __FILE__, __LINE__);
+  if (p.name_.empty()) p.name_ = shader;
+}
+
+void PipelineBuilder::makeLayout(Context& ctx, Pipeline& p, VkDescriptorSetLayout globalSet) {
   p.ctx_ = &ctx;
   std::vector<VkDescriptorSetLayoutBinding> b;
-  for (const Binding& x : bindings) b.push_back({x.binding, x.type, x.count, p.stages_, nullptr});
+  for (const ShaderBinding& x : p.interface_.bindings) {
+    if (x.set > 1)
+      fatal((p.name_ + ": descriptor '" + x.name + "' is in set " + std::to_string(x.set) +
+             "; pipelines have set 0 (the pass's) and set 1 (global)").c_str(),
+            __FILE__, __LINE__);
+    if (x.set == 0) {
+      if (x.count == 0)
+        fatal((p.name_ + ": '" + x.name + "' is a runtime array in set 0 (push descriptors need a size)").c_str(),
+              __FILE__, __LINE__);
+      b.push_back({x.binding, x.type, x.count, p.stages_, nullptr});
+    }
+  }
+  const bool global = p.interface_.usesSet(1);
+  if (global && !globalSet)
+    fatal((p.name_ + ": uses set 1 but the pipeline was created without the global set").c_str(), __FILE__, __LINE__);
   VkDescriptorSetLayoutCreateInfo sci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   sci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
   sci.bindingCount = uint32_t(b.size());
   sci.pBindings = b.data();
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device(), &sci, nullptr, &p.setLayout_));
+  const uint32_t pushBytes = p.interface_.pushConstantBytes;
   VkPushConstantRange range{p.stages_, 0, pushBytes};
   VkPipelineLayoutCreateInfo lci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   const VkDescriptorSetLayout sets[2] = {p.setLayout_, globalSet};
-  lci.setLayoutCount = globalSet ? 2 : 1;
+  lci.setLayoutCount = global ? 2 : 1;
   lci.pSetLayouts = sets;
   lci.pushConstantRangeCount = pushBytes ? 1 : 0;
   lci.pPushConstantRanges = &range;
   VK_CHECK(vkCreatePipelineLayout(ctx.device(), &lci, nullptr, &p.layout_));
 }
 
-Pipeline createComputePipeline(Context& ctx, std::string_view shader, std::span<const Binding> bindings,
-                               uint32_t pushConstantBytes, VkDescriptorSetLayout globalSet) {
+void Pipeline::pushConstants(VkCommandBuffer cmd, const void* data, uint32_t bytes) const {
+  RAYSTER_ASSERT(bytes == interface_.pushConstantBytes,
+                 "push-constant struct size differs from the shader's block (shaders/shared/push.h)");
+  vkCmdPushConstants(cmd, layout_, stages_, 0, bytes, data);
+}
+
+Pipeline createComputePipeline(Context& ctx, std::string_view shader, VkDescriptorSetLayout globalSet) {
   Pipeline p;
   p.stages_ = VK_SHADER_STAGE_COMPUTE_BIT;
-  PipelineBuilder::makeLayout(ctx, p, bindings, pushConstantBytes, globalSet);
+  PipelineBuilder::addStage(p, shader, VK_SHADER_STAGE_COMPUTE_BIT);
+  PipelineBuilder::makeLayout(ctx, p, globalSet);
   VkShaderModule module = createShaderModule(ctx, shader);
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -86,7 +124,9 @@ Pipeline createComputePipeline(Context& ctx, std::string_view shader, std::span<
 Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
   Pipeline p;
   p.stages_ = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-  PipelineBuilder::makeLayout(ctx, p, d.bindings, d.pushConstantBytes, d.globalSet);
+  PipelineBuilder::addStage(p, d.vertex, VK_SHADER_STAGE_VERTEX_BIT);
+  PipelineBuilder::addStage(p, d.fragment, VK_SHADER_STAGE_FRAGMENT_BIT);
+  PipelineBuilder::makeLayout(ctx, p, d.globalSet);
   VkShaderModule vs = createShaderModule(ctx, d.vertex);
   VkShaderModule fs = createShaderModule(ctx, d.fragment);
   VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},

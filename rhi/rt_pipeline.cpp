@@ -29,7 +29,15 @@ SbtLayout computeSbtLayout(uint32_t handleSize, uint32_t handleAlignment, uint32
 RayTracingPipeline::RayTracingPipeline(Context& ctx, const RayTracingPipelineDesc& d) {
   stages_ = VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_MISS_BIT_KHR | VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR |
             VK_SHADER_STAGE_ANY_HIT_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR;
-  PipelineBuilder::makeLayout(ctx, *this, d.bindings, d.pushConstantBytes, d.globalSet);
+  PipelineBuilder::addStage(*this, d.raygen, VK_SHADER_STAGE_RAYGEN_BIT_KHR);
+  for (auto m : d.miss) PipelineBuilder::addStage(*this, m, VK_SHADER_STAGE_MISS_BIT_KHR);
+  for (const HitGroup& h : d.hitGroups) {
+    if (!h.closestHit.empty()) PipelineBuilder::addStage(*this, h.closestHit, VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR);
+    if (!h.anyHit.empty()) PipelineBuilder::addStage(*this, h.anyHit, VK_SHADER_STAGE_ANY_HIT_BIT_KHR);
+    if (!h.intersection.empty())
+      PipelineBuilder::addStage(*this, h.intersection, VK_SHADER_STAGE_INTERSECTION_BIT_KHR);
+  }
+  PipelineBuilder::makeLayout(ctx, *this, d.globalSet);
 
   std::vector<VkPipelineShaderStageCreateInfo> stages;
   std::vector<VkRayTracingShaderGroupCreateInfoKHR> groups;

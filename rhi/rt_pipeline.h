@@ -19,8 +19,6 @@ struct RayTracingPipelineDesc {
   std::string_view raygen;
   std::vector<std::string_view> miss;  // index = miss index in traceRayEXT
   std::vector<HitGroup> hitGroups;     // index = sbtRecordOffset (+ instance offset)
-  std::vector<Binding> bindings;
-  uint32_t pushConstantBytes = 0;
   uint32_t maxRecursionDepth = 1;
   VkDescriptorSetLayout globalSet = VK_NULL_HANDLE;  // set 1 (bindless textures)
 };

@@ -5,7 +5,7 @@
 // Vertices are pulled by device address; draws are non-indexed over the index count.
 // The draw comes from the culled list (render/passes/cull.cpp): gl_DrawID indexes drawIds, whose
 // entry is the DrawRecord row.
-layout(push_constant, scalar) uniform Push { uint64_t records; uint64_t drawIds; } pc;
+layout(push_constant, scalar) uniform Push { GBufferDrawPush pc; };
 layout(buffer_reference, scalar) readonly buffer DrawRecords { DrawRecord d[]; };
 layout(buffer_reference, scalar) readonly buffer DrawIds { uint i[]; };
 

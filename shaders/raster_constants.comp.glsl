@@ -1,11 +1,12 @@
 #version 460
+#include "lib/common.glsl"
 
 // The raster mode's stand-ins for effects it does not compute: AO 1 (unoccluded) and a zero
 // radiance image (no specular light yet, no indirect light).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0, r16f) uniform writeonly image2DArray outAo;
 layout(set = 0, binding = 1, rgba16f) uniform writeonly image2D outZero;
-layout(push_constant) uniform Push { uvec2 size; } pc;
+layout(push_constant, scalar) uniform Push { SizePush pc; };
 
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);

@@ -3,7 +3,7 @@
 #include "lib/frame.glsl"
 
 // Depth-only view of the scene from a light (render/passes/shadow_maps.cpp): one tile of the atlas.
-layout(push_constant, scalar) uniform Push { mat4 clipFromWorld; uint instance; uint geometry; } pc;
+layout(push_constant, scalar) uniform Push { ShadowMapPush pc; };
 
 void main() {
   InstanceRecord inst = Instances(frame.instances).i[pc.instance];

@@ -3,12 +3,7 @@
 #include "lib/frame.glsl"
 #include "lib/sphere.glsl"
 
-layout(push_constant, scalar) uniform Push {
-  mat4 clipFromWorld;
-  uint instance;
-  uint geometry;
-  vec4 light;
-} pc;
+layout(push_constant, scalar) uniform Push { ShadowSpherePush pc; };
 
 layout(location = 0) in vec3 inWorldPos;
 layout(location = 1) flat in uint inSphere;

@@ -4,12 +4,7 @@
 
 // Analytic spheres in a shadow map: each sphere's bounding cube, seen from the light; the fragment
 // shader intersects the exact sphere along the light's ray (shadow_sphere.frag).
-layout(push_constant, scalar) uniform Push {
-  mat4 clipFromWorld;
-  uint instance;
-  uint geometry;
-  vec4 light;  // xyz: position (w = 1, perspective) or travel direction (w = 0, orthographic)
-} pc;
+layout(push_constant, scalar) uniform Push { ShadowSpherePush pc; };
 
 layout(location = 0) out vec3 outWorldPos;
 layout(location = 1) flat out uint outSphere;

@@ -12,11 +12,7 @@ layout(set = 0, binding = 2) uniform sampler2D depthTex;    // G-buffer depth, r
 layout(set = 0, binding = 3) uniform sampler2D historyTex;  // previous output (linear, clamp)
 layout(set = 0, binding = 4) uniform sampler2D motionTex;   // uvCur − uvPrev; unused without kTaaMotion
 layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D outHistory;
-layout(push_constant) uniform Push {
-  uvec2 size;
-  uint flags;
-  float currentWeight;  // of the current frame, before the anti-firefly weights
-} pc;
+layout(push_constant, scalar) uniform Push { TaaPush pc; };
 
 const uint kTaaHistoryValid = 1u;  // off: first frame, cut, resize — output the current colour
 const uint kTaaMotion = 2u;        // a motion image is bound; else camera motion from depth

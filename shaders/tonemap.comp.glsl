@@ -7,7 +7,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 1) uniform sampler2D hdrTex;
 layout(set = 0, binding = 2, rgba8) uniform writeonly image2D outLdr;
-layout(push_constant) uniform Push { uvec2 size; uint seed; uint op; float dither; } pc;
+layout(push_constant, scalar) uniform Push { TonemapPush pc; };
 
 // Hill's fit of ACES RRT+ODT. Rows of the fit's matrices; mat3(rows) * v in HLSL equals
 // v * mat3(rows) in GLSL.

@@ -61,9 +61,6 @@ void ensureHiz(CullBuffers& c, VkExtent2D size) {
 
 void dispatchCull(graph::PassContext& pc, const FrameInputs& in, const CulledDraws& out, uint32_t flags) {
   const CullBuffers& c = *in.scene.cull;
-  const rhi::Pipeline& pipe = in.pipelines.cull;
-  vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-  rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
   const gpu::CullPush push{in.scene.drawRecords.address(),
                            pc.buffer(out.commands).address(),
                            pc.buffer(out.drawIds).address(),
@@ -72,7 +69,7 @@ void dispatchCull(graph::PassContext& pc, const FrameInputs& in, const CulledDra
                            out.hiz.valid() ? pc.buffer(out.hiz).address() : 0,
                            c.drawCount,
                            flags};
-  vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), &push);
+  pc.push(push);
   vkCmdDispatch(pc.cmd, (c.drawCount + gpu::kCullGroupSize - 1) / gpu::kCullGroupSize, 1, 1);
 }
 
@@ -107,6 +104,8 @@ CulledDraws cullDraws(graph::RenderGraph& graph, const FrameInputs& in) {
   graph.addPass(
       c.enabled ? "cull-early" : "cull",
       [&](graph::PassBuilder& b) {
+        // The lists are written through device addresses (CullPush): declared by hand.
+        b.pipeline(in.pipelines.compute("cull.comp"));
         b.write(out.commands, graph::Use::StorageWriteCompute);
         b.write(out.drawIds, graph::Use::StorageWriteCompute);
         b.write(out.counts, graph::Use::StorageReadWriteCompute);  // atomicAdd
@@ -120,6 +119,7 @@ void cullLate(graph::RenderGraph& graph, const FrameInputs& in, const CulledDraw
   graph.addPass(
       "cull-late",
       [&](graph::PassBuilder& b) {
+        b.pipeline(in.pipelines.compute("cull.comp"));
         b.write(culled.commands, graph::Use::StorageWriteCompute);
         b.write(culled.drawIds, graph::Use::StorageWriteCompute);
         b.write(culled.counts, graph::Use::StorageReadWriteCompute);
@@ -137,16 +137,10 @@ void buildDepthPyramid(graph::RenderGraph& graph, const FrameInputs& in, graph::
   graph.addPass(
       "hiz-build",
       [&](graph::PassBuilder& b) {
-        b.read(depth, graph::Use::SampledCompute);
-        b.write(hiz, graph::Use::StorageReadWriteCompute);
+        b.pipeline(in.pipelines.compute("hiz.comp")).bind("depthImage", depth);
+        b.write(hiz, graph::Use::StorageReadWriteCompute);  // through its device address (HizPush)
       },
-      [depth, hiz, &in](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = in.pipelines.hiz;
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter()
-            .uniformBuffer(0, in.constants)
-            .sampledImage(1, pc.image(depth).view(), in.nearest.handle())
-            .push(pc.cmd, pipe);
+      [hiz, &in](graph::PassContext& pc) {
         const rhi::Buffer& buffer = pc.buffer(hiz);
         for (uint32_t level = 0;; ++level) {
           const uint32_t w = std::max((in.size.width + (1u << level) - 1) >> level, 1u);
@@ -164,8 +158,7 @@ void buildDepthPyramid(graph::RenderGraph& graph, const FrameInputs& in, graph::
             dep.pBufferMemoryBarriers = &mb;
             vkCmdPipelineBarrier2(pc.cmd, &dep);
           }
-          const gpu::HizPush push{buffer.address(), level, 0};
-          vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), &push);
+          pc.push(gpu::HizPush{buffer.address(), level, 0});
           vkCmdDispatch(pc.cmd, (w + gpu::kHizGroupSize - 1) / gpu::kHizGroupSize,
                         (h + gpu::kHizGroupSize - 1) / gpu::kHizGroupSize, 1);
           if (w == 1 && h == 1) break;

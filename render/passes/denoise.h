@@ -23,7 +23,7 @@
 #include <volk.h>
 
 #include "graph/graph.h"
-#include "rhi/pipelines.h"
+#include "rhi/pipeline_library.h"
 
 namespace rayster::render {
 
@@ -51,18 +51,10 @@ rhi::ImageDesc svgfMomentsHistoryDesc(VkExtent2D size);
 // Layer counts up to this use the small shadow à-trous pipeline (shaders/shadow_atrous_2.comp.glsl).
 inline constexpr uint32_t kShadowAtrousSmallLayers = 2;
 
-struct DenoisePipelines {
-  rhi::Pipeline surface;
-  rhi::Pipeline shadowTemporal, shadowAtrous;
-  rhi::Pipeline shadowAtrous2;  // the same for at most kShadowAtrousSmallLayers layers (fewer registers)
-  rhi::Pipeline svgfTemporal, svgfAtrous, svgfAtrousHistory;
-  static DenoisePipelines create(rhi::Context& ctx);
-};
-
 // What every denoise pass needs besides its images (no scene, so tests can run them alone);
 // copied into the passes, so a temporary will do.
 struct DenoiseInputs {
-  const DenoisePipelines& pipelines;
+  rhi::PipelineLibrary& pipelines;  // the passes create their compute pipelines on first use
   VkSampler nearest;  // inputs are read with texelFetch only
   VkExtent2D size;
 };

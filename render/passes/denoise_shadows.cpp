@@ -18,26 +18,15 @@ ShadowDenoised shadowTemporal(graph::RenderGraph& graph, const DenoiseInputs& in
   graph.addPass(
       name + "-temporal",
       [&](graph::PassBuilder& b) {
-        for (auto h : {surface.current, surface.previous, motion, raw, history.previous})
-          b.read(h, graph::Use::SampledCompute);
-        b.write(history.next, graph::Use::StorageWriteCompute);
-        b.write(variance, graph::Use::StorageWriteCompute);
+        const VkSampler n = in.nearest;
+        b.pipeline(in.pipelines.compute("shadow_temporal.comp"));
+        b.bind("surfaceTex", surface.current, n).bind("prevSurfaceTex", surface.previous, n).bind("motionTex", motion, n);
+        b.bind("rawTex", raw, n).bind("historyTex", history.previous, n);
+        b.bind("outHistory", history.next).bind("outVariance", variance);
       },
-      [=](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = in.pipelines.shadowTemporal;
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter()
-            .sampledImage(0, pc.image(surface.current).view(), in.nearest)
-            .sampledImage(1, pc.image(surface.previous).view(), in.nearest)
-            .sampledImage(2, pc.image(motion).view(), in.nearest)
-            .sampledImage(3, pc.image(raw).view(), in.nearest)
-            .sampledImage(4, pc.image(history.previous).view(), in.nearest)
-            .storageImage(5, pc.image(history.next).view())
-            .storageImage(6, pc.image(variance).view())
-            .push(pc.cmd, pipe);
-        const gpu::TemporalPush push{{in.size.width, in.size.height}, lights, temporalFlags(state)};
-        vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), &push);
-        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
+      [size = in.size, lights, state](graph::PassContext& pc) {
+        pc.push(gpu::TemporalPush{{size.width, size.height}, lights, temporalFlags(state)});
+        vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
       });
   return {history.next, variance, {}};
 }
@@ -55,24 +44,14 @@ graph::ImageHandle shadowAtrous(graph::RenderGraph& graph, const DenoiseInputs& 
   graph.addPass(
       name + "-atrous-" + std::to_string(step),
       [&](graph::PassBuilder& b) {
-        b.read(surface, graph::Use::SampledCompute);
-        b.read(input, graph::Use::SampledCompute);
-        b.read(variance, graph::Use::SampledCompute);
-        b.write(out, graph::Use::StorageWriteCompute);
+        const VkSampler n = in.nearest;
+        b.pipeline(in.pipelines.compute(lights <= kShadowAtrousSmallLayers ? "shadow_atrous_2.comp" : "shadow_atrous.comp"));
+        b.bind("surfaceTex", surface, n).bind("inputTex", input, n).bind("varianceTex", variance, n);
+        b.bind("outVisibility", out);
       },
-      [=](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe =
-            lights <= kShadowAtrousSmallLayers ? in.pipelines.shadowAtrous2 : in.pipelines.shadowAtrous;
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter()
-            .sampledImage(0, pc.image(surface).view(), in.nearest)
-            .sampledImage(1, pc.image(input).view(), in.nearest)
-            .storageImage(2, pc.image(out).view())
-            .sampledImage(3, pc.image(variance).view(), in.nearest)
-            .push(pc.cmd, pipe);
-        const gpu::AtrousPush push{{in.size.width, in.size.height}, lights, step, 0, 0, 0, 0};
-        vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), &push);
-        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
+      [size = in.size, lights, step](graph::PassContext& pc) {
+        pc.push(gpu::AtrousPush{{size.width, size.height}, lights, step, 0, 0, 0, 0});
+        vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
       });
   return out;
 }

@@ -10,9 +10,10 @@ namespace {
 uint32_t temporalFlags(TemporalState s) {
   return (s.moving ? gpu::kDenoiseMoving : 0u) | (s.reset ? gpu::kDenoiseReset : 0u);
 }
-void dispatch(VkCommandBuffer cmd, const rhi::Pipeline& pipe, VkExtent2D size, const void* push, uint32_t bytes) {
-  vkCmdPushConstants(cmd, pipe.layout(), pipe.stages(), 0, bytes, push);
-  vkCmdDispatch(cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
+template <class Push>
+void dispatch(graph::PassContext& pc, VkExtent2D size, const Push& push) {
+  pc.push(push);
+  vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
 }
 }  // namespace
 
@@ -29,26 +30,14 @@ graph::ImageHandle svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& 
   graph.addPass(
       name + "-temporal",
       [&](graph::PassBuilder& b) {
-        for (auto h : {surface.current, surface.previous, motion, raw, color.previous, moments.previous})
-          b.read(h, graph::Use::SampledCompute);
-        for (auto h : {color.next, moments.next, out}) b.write(h, graph::Use::StorageWriteCompute);
+        const VkSampler n = in.nearest;
+        b.pipeline(in.pipelines.compute("svgf_temporal.comp"));
+        b.bind("surfaceTex", surface.current, n).bind("prevSurfaceTex", surface.previous, n).bind("motionTex", motion, n);
+        b.bind("rawTex", raw, n).bind("colorHistoryTex", color.previous, n).bind("momentsHistoryTex", moments.previous, n);
+        b.bind("outColor", color.next).bind("outMoments", moments.next).bind("outColorVariance", out);
       },
-      [=](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = in.pipelines.svgfTemporal;
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter()
-            .sampledImage(0, pc.image(surface.current).view(), in.nearest)
-            .sampledImage(1, pc.image(surface.previous).view(), in.nearest)
-            .sampledImage(2, pc.image(motion).view(), in.nearest)
-            .sampledImage(3, pc.image(raw).view(), in.nearest)
-            .sampledImage(4, pc.image(color.previous).view(), in.nearest)
-            .sampledImage(5, pc.image(moments.previous).view(), in.nearest)
-            .storageImage(6, pc.image(color.next).view())
-            .storageImage(7, pc.image(moments.next).view())
-            .storageImage(8, pc.image(out).view())
-            .push(pc.cmd, pipe);
-        const gpu::TemporalPush push{{in.size.width, in.size.height}, 1, temporalFlags(state)};
-        dispatch(pc.cmd, pipe, in.size, &push, sizeof(push));
+      [size = in.size, state](graph::PassContext& pc) {
+        dispatch(pc, size, gpu::TemporalPush{{size.width, size.height}, 1, temporalFlags(state)});
       });
   return out;
 }
@@ -59,21 +48,13 @@ graph::ImageHandle svgfAtrous(graph::RenderGraph& graph, const DenoiseInputs& in
   graph.addPass(
       name + "-atrous-" + std::to_string(step),
       [&](graph::PassBuilder& b) {
-        for (auto h : {surface, input}) b.read(h, graph::Use::SampledCompute);
-        b.write(output, graph::Use::StorageWriteCompute);
-        if (history.valid()) b.write(history, graph::Use::StorageReadWriteCompute);  // keeps its a (n)
+        const VkSampler n = in.nearest;
+        b.pipeline(in.pipelines.compute(history.valid() ? "svgf_atrous_history.comp" : "svgf_atrous.comp"));
+        b.bind("surfaceTex", surface, n).bind("inputTex", input, n).bind("outColorVariance", output);
+        if (history.valid()) b.bind("outHistory", history);  // read-write: keeps its a (n)
       },
-      [=](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = history.valid() ? in.pipelines.svgfAtrousHistory : in.pipelines.svgfAtrous;
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter w;
-        w.sampledImage(0, pc.image(surface).view(), in.nearest)
-            .sampledImage(1, pc.image(input).view(), in.nearest)
-            .storageImage(2, pc.image(output).view());
-        if (history.valid()) w.storageImage(3, pc.image(history).view());
-        w.push(pc.cmd, pipe);
-        const gpu::AtrousPush push{{in.size.width, in.size.height}, 1, step, 0, 0, 0, 0};
-        dispatch(pc.cmd, pipe, in.size, &push, sizeof(push));
+      [size = in.size, step](graph::PassContext& pc) {
+        dispatch(pc, size, gpu::AtrousPush{{size.width, size.height}, 1, step, 0, 0, 0, 0});
       });
   return output;
 }

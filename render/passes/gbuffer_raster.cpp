@@ -3,7 +3,7 @@
 #include "render/passes/cull.h"
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
-#include "shaders/shared/types.h"
+#include "shaders/shared/push.h"
 
 namespace rayster::render {
 
@@ -38,8 +38,9 @@ GBuffer createGBufferTargets(graph::RenderGraph& graph, VkExtent2D size, bool tr
   return gb;
 }
 
-void bindTextures(VkCommandBuffer cmd, const FrameInputs& in, VkPipelineBindPoint bindPoint, VkPipelineLayout layout) {
-  vkCmdBindDescriptorSets(cmd, bindPoint, layout, 1, 1, &in.textures, 0, nullptr);
+void bindSurface(graph::PassBuilder& b, const GBuffer& gb) {
+  b.bind("depthTex", gb.depth).bind("normalTex", gb.normals).bind("albedoTex", gb.albedo);
+  b.bind("materialTex", gb.material).bind("emissiveTex", gb.emissive).bind("specularGbufTex", gb.specular);
 }
 
 namespace {
@@ -49,6 +50,17 @@ namespace {
 void drawGBuffer(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, const CulledDraws& culled,
                  CullPhase phase) {
   const bool late = phase == CullPhase::Late;
+  auto describe = [](bool spheres) {
+    rhi::GraphicsPipelineDesc g;
+    g.vertex = spheres ? "gbuffer_sphere.vert" : "gbuffer.vert";
+    g.fragment = spheres ? "gbuffer_sphere.frag" : "gbuffer.frag";
+    g.colorFormats = {kNormalFormat, kAlbedoFormat, kMaterialFormat, kEmissiveFormat,
+                      kIdFormat,     kMotionFormat, kSpecularFormat};
+    g.depthFormat = kDepthFormat;
+    return g;
+  };
+  const rhi::Pipeline* triangles = &in.pipelines.graphics("gbuffer-raster", [&] { return describe(false); });
+  const rhi::Pipeline* spheres = &in.pipelines.graphics("gbuffer-raster-spheres", [&] { return describe(true); });
   graph.addPass(
       late ? "gbuffer-raster-late" : "gbuffer-raster",
       [&](graph::PassBuilder& b) {
@@ -59,7 +71,7 @@ void drawGBuffer(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer
         b.read(culled.counts, graph::Use::IndirectRead);
         b.read(culled.drawIds, graph::Use::VertexShaderRead);
       },
-      [gb, culled, late, &in](graph::PassContext& pc) {
+      [gb, culled, late, triangles, spheres, &in](graph::PassContext& pc) {
         const VkAttachmentLoadOp load = late ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
         constexpr int kTargets = 7;  // in the order of the fragment outputs (lib/gbuffer_out.glsl)
         VkRenderingAttachmentInfo color[kTargets];
@@ -96,13 +108,10 @@ void drawGBuffer(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer
         const uint32_t maxDraws = in.scene.cull->drawCount;
         for (uint32_t type : {0u, 1u}) {
           const uint32_t list = (late ? 2u : 0u) + type;
-          const rhi::Pipeline& pipe = type == 1 ? in.pipelines.gbufferSpheres : in.pipelines.gbufferRaster;
-          vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.handle());
-          rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
-          bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.layout());
-          const uint64_t push[2] = {in.scene.drawRecords.address(),
-                                    pc.buffer(culled.drawIds).address() + list * maxDraws * sizeof(uint32_t)};
-          vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), push);
+          const rhi::Pipeline& pipe = type == 1 ? *spheres : *triangles;
+          pc.bindWithGlobals(pipe);
+          pipe.push(pc.cmd, gpu::GBufferDrawPush{in.scene.drawRecords.address(),
+                                                 pc.buffer(culled.drawIds).address() + list * maxDraws * sizeof(uint32_t)});
           vkCmdDrawIndirectCount(pc.cmd, pc.buffer(culled.commands).handle(),
                                  list * maxDraws * sizeof(VkDrawIndirectCommand), pc.buffer(culled.counts).handle(),
                                  list * sizeof(uint32_t), maxDraws, sizeof(VkDrawIndirectCommand));

@@ -1,5 +1,4 @@
 // Pass 7: deferred lighting in compute.
-#include "render/gpu_scene.h"
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
 
@@ -17,33 +16,12 @@ graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& i
   graph.addPass(
       name,
       [&](graph::PassBuilder& b) {
-        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, visibility, specular, ao, indirect,
-                       directOrUnused, gb.specular})
-          b.read(h, graph::Use::SampledCompute);
-        b.write(hdr, graph::Use::StorageWriteCompute);
+        b.pipeline(in.pipelines.compute("lighting.comp"));
+        bindSurface(b, gb);
+        b.bind("visibilityTex", visibility).bind("specularTex", specular).bind("aoTex", ao);
+        b.bind("indirectTex", indirect).bind("directTex", directOrUnused).bind("outColor", hdr);
       },
-      [gb, visibility, specular, ao, indirect, directOrUnused, hdr, &in](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = in.pipelines.lighting;
-        VkSampler s = in.nearest.handle();
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter()
-            .uniformBuffer(0, in.constants)
-            .sampledImage(1, pc.image(gb.depth).view(), s)
-            .sampledImage(2, pc.image(gb.normals).view(), s)
-            .sampledImage(3, pc.image(gb.albedo).view(), s)
-            .sampledImage(4, pc.image(gb.material).view(), s)
-            .sampledImage(5, pc.image(gb.emissive).view(), s)
-            .sampledImage(6, pc.image(visibility).view(), s)
-            .storageImage(7, pc.image(hdr).view())
-            .sampledImage(8, pc.image(specular).view(), s)
-            .sampledImage(9, pc.image(ao).view(), s)
-            .sampledImage(10, pc.image(indirect).view(), s)
-            .sampledImage(11, pc.image(directOrUnused).view(), s)
-            .sampledImage(12, pc.image(gb.specular).view(), s)
-            .push(pc.cmd, pipe);
-        bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.layout());
-        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
-      });
+      [size = in.size](graph::PassContext& pc) { vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1); });
   return hdr;
 }
 

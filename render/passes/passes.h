@@ -11,32 +11,44 @@
 
 namespace rayster::rhi {
 class Buffer;
+class PipelineLibrary;
 class Sampler;
-class RayTracingPipeline;
 } // namespace rayster::rhi
 
 namespace rayster::render {
 
 struct GpuScene;
-struct Pipelines;
 
-// What every pass may read without declaring it: immutable for the whole frame.
 // Graph image tags (graph::RenderGraph::createImage): the image holds pre-exposed light
 // (lib/frame.glsl), which an AOV of it divides back to the scene's units.
 inline constexpr uint32_t kRadianceImage = 1u;
 
+// What every pass may use: immutable for the whole frame. The graph binds the frame constants
+// ("FrameBlock"), the bindless textures (set 1) and the nearest sampler (the default for sampled
+// images) wherever a pass's shaders declare them (beginFrameGraph).
 struct FrameInputs {
-  const Pipelines& pipelines;
+  rhi::PipelineLibrary& pipelines;  // each pass creates its pipelines here on first use
   const GpuScene& scene;
   const rhi::Buffer& constants;  // FrameConstants, written by the host before submission
   const rhi::Sampler& nearest;
   const rhi::Sampler& linear;  // clamp to edge: filtered history fetches (TAA)
   VkExtent2D size;
-  VkDescriptorSet textures;  // set 1: the scene's bindless textures
+  graph::AccelHandle tlas;  // the scene's TLAS (invalid without ray tracing): bind("tlas", in.tlas)
 };
 
-// Binds the bindless texture set as set 1 of `pipeline`.
-void bindTextures(VkCommandBuffer cmd, const FrameInputs& in, VkPipelineBindPoint bindPoint, VkPipelineLayout layout);
+// Gives a frame's graph its globals (RenderGraph::setGlobals) and, on devices with ray tracing,
+// imports the scene's TLAS; returns the TLAS handle for FrameInputs::tlas.
+graph::AccelHandle beginFrameGraph(graph::RenderGraph& graph, GpuScene& scene, const rhi::Buffer& constants,
+                                   const rhi::Sampler& nearest);
+// TLAS refit or rebuild as the graph pass "tlas-update", which writes in.tlas: every ray-tracing
+// pass after it waits for the build through the barriers the graph derives. Call before the passes
+// that trace (the instances were written by Tlas::prepare).
+void updateTlas(graph::RenderGraph& graph, const FrameInputs& in, bool refit);
+
+struct GBuffer;
+// Binds the G-buffer images a shading pass reads under their usual GLSL names (depthTex, normalTex,
+// albedoTex, materialTex, emissiveTex, specularGbufTex).
+void bindSurface(graph::PassBuilder& b, const GBuffer& gb);
 
 struct GBuffer {
   graph::ImageHandle depth;     // D32 (raster) or R32F (traced): sample .r either way
@@ -62,12 +74,10 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in);
 graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t lights,
                                 uint32_t extraLayers = 0);
 
-struct RawRayPipelines;
 // Raw-rate twins (RenderSettings::rawRays, passes "raw-gbuffer-traced" and "raw-rt-shadows"): the
 // rays of the traced G-buffer and of traceShadows() with trivial hit/miss shaders (raw_rays.cpp).
-void traceRawPrimary(graph::RenderGraph& graph, const FrameInputs& in, const RawRayPipelines& raw);
-void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t lights,
-                     const RawRayPipelines& raw);
+void traceRawPrimary(graph::RenderGraph& graph, const FrameInputs& in);
+void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t lights);
 // The raw-rate twins of rt-ao, rt-direct (many-light mode only), rt-indirect and rt-specular
 // ("raw-rt-ao", ...; raw_rays.cpp says what each replays). Their R16F images mark what the rays did
 // (AOVs "raw-ao", "raw-direct", "raw-indirect", "raw-specular"); `direct` is invalid without many lights.
@@ -81,7 +91,7 @@ struct RawTwinEffects {
 };
 // `indirectQuarter`: as traceIndirect's `quarter` (raw-rt-indirect launches the same grid).
 RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, RawTwinEffects effects,
-                            bool indirectQuarter, uint32_t lightsPerHit, const RawRayPipelines& raw);
+                            bool indirectQuarter, uint32_t lightsPerHit);
 // Denoised by denoiseShadows() (render/passes/denoise.h).
 
 // Reflections and refractions of mirror, metal and glass pixels (RGBA16F radiance, 0 elsewhere).
@@ -117,8 +127,7 @@ struct PathAccumulation {
   graph::ImageHandle previousMean, previousMoments;
   graph::ImageHandle mean, moments;
 };
-graph::ImageHandle tracePaths(graph::RenderGraph& graph, const FrameInputs& in, const rhi::RayTracingPipeline& pipe,
-                              const PathAccumulation& acc);
+graph::ImageHandle tracePaths(graph::RenderGraph& graph, const FrameInputs& in, const PathAccumulation& acc);
 
 // What the lighting pass combines with the G-buffer.
 struct LightingInputs {

@@ -1,6 +1,7 @@
 // Raster mode: screen-space reflections and refraction, and the constant stand-in images.
 #include "render/passes/raster_passes.h"
 #include "render/pipelines.h"
+#include "shaders/shared/push.h"
 
 namespace rayster::render {
 
@@ -13,19 +14,11 @@ RasterConstants rasterConstants(graph::RenderGraph& graph, const FrameInputs& in
   graph.addPass(
       "raster-constants",
       [&](graph::PassBuilder& b) {
-        b.write(c.ao, graph::Use::StorageWriteCompute);
-        b.write(c.zero, graph::Use::StorageWriteCompute);
+        b.pipeline(in.pipelines.compute("raster_constants.comp")).bind("outAo", c.ao).bind("outZero", c.zero);
       },
-      [c, &in](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = in.pipelines.rasterConstants;
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter()
-            .storageImage(0, pc.image(c.ao).view())
-            .storageImage(1, pc.image(c.zero).view())
-            .push(pc.cmd, pipe);
-        const uint32_t size[2] = {in.size.width, in.size.height};
-        vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(size), size);
-        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
+      [size = in.size](graph::PassContext& pc) {
+        pc.push(gpu::SizePush{{size.width, size.height}});
+        vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
       });
   return c;
 }
@@ -39,28 +32,11 @@ graph::ImageHandle screenSpaceSpecular(graph::RenderGraph& graph, const FrameInp
   graph.addPass(
       "ssr",
       [&](graph::PassBuilder& b) {
-        for (auto h : {gb.depth, gb.normals, gb.albedo, gb.material, gb.emissive, lit, gb.specular})
-          b.read(h, graph::Use::SampledCompute);
-        b.write(out, graph::Use::StorageWriteCompute);
+        b.pipeline(in.pipelines.compute("ssr.comp"));
+        bindSurface(b, gb);
+        b.bind("litTex", lit, in.linear.handle()).bind("outSpecular", out);
       },
-      [gb, lit, out, &in](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = in.pipelines.ssr;
-        VkSampler s = in.nearest.handle(), l = in.linear.handle();
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter()
-            .uniformBuffer(0, in.constants)
-            .sampledImage(1, pc.image(gb.depth).view(), s)
-            .sampledImage(2, pc.image(gb.normals).view(), s)
-            .sampledImage(3, pc.image(gb.albedo).view(), s)
-            .sampledImage(4, pc.image(gb.material).view(), s)
-            .sampledImage(5, pc.image(gb.emissive).view(), s)
-            .sampledImage(6, pc.image(lit).view(), l)
-            .storageImage(7, pc.image(out).view())
-            .sampledImage(8, pc.image(gb.specular).view(), s)
-            .push(pc.cmd, pipe);
-        bindTextures(pc.cmd, in, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.layout());
-        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
-      });
+      [size = in.size](graph::PassContext& pc) { vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1); });
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include "render/passes/raster_passes.h"
 #include "render/pipelines.h"
 #include "render/shadow_setup.h"
+#include "shaders/shared/push.h"
 
 namespace rayster::render {
 
@@ -28,9 +29,19 @@ graph::ImageHandle renderShadowAtlas(graph::RenderGraph& graph, const FrameInput
   graph::ImageHandle depth = graph.createImage(
       "shadow-atlas", {kDepthFormat, size.width, size.height, 1,
                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+  auto describe = [](bool spheres) {
+    rhi::GraphicsPipelineDesc d;
+    d.vertex = spheres ? "shadow_sphere.vert" : "shadow_map.vert";
+    d.fragment = spheres ? "shadow_sphere.frag" : "shadow_map.frag";
+    d.depthFormat = kDepthFormat;
+    d.dynamicCulling = !spheres;  // per draw: the material's sidedness, the instance's mirroring
+    return d;
+  };
+  const rhi::Pipeline* triangleMaps = &in.pipelines.graphics("shadow-map", [&] { return describe(false); });
+  const rhi::Pipeline* sphereMaps = &in.pipelines.graphics("shadow-map-spheres", [&] { return describe(true); });
   graph.addPass(
       "shadow-maps", [&](graph::PassBuilder& b) { b.write(depth, graph::Use::DepthAttachment); },
-      [depth, size, &atlas, &in](graph::PassContext& pc) {
+      [depth, size, triangleMaps, sphereMaps, &atlas, &in](graph::PassContext& pc) {
         VkRenderingAttachmentInfo da{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         da.imageView = pc.image(depth).view();
         da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -44,27 +55,24 @@ graph::ImageHandle renderShadowAtlas(graph::RenderGraph& graph, const FrameInput
         vkCmdBeginRendering(pc.cmd, &ri);
         // Triangles, then analytic spheres (bounding cubes intersected exactly along the light's rays).
         for (bool spheres : {false, true}) {
-          const rhi::Pipeline& pipe = spheres ? in.pipelines.shadowSpheres : in.pipelines.shadowMap;
-          vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.handle());
-          rhi::DescriptorWriter().uniformBuffer(0, in.constants).push(pc.cmd, pipe);
+          const rhi::Pipeline& pipe = spheres ? *sphereMaps : *triangleMaps;
+          pc.bindWithGlobals(pipe);
           for (uint32_t v = 0; v < atlas.setup.viewCount; ++v) {
             const ShadowAtlas::Tile& t = atlas.tiles[v];
             VkViewport vp{float(t.x), float(t.y), float(atlas.tileSize), float(atlas.tileSize), 0, 1};
             VkRect2D scissor{{int32_t(t.x), int32_t(t.y)}, {atlas.tileSize, atlas.tileSize}};
             vkCmdSetViewport(pc.cmd, 0, 1, &vp);
             vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
-            struct {
-              glm::mat4 clipFromWorld;
-              uint32_t instance, geometry;
-              glm::vec4 light;
-            } push{atlas.setup.views[v].clipFromWorld, 0, 0, atlas.lightRays[v]};
-            const uint32_t bytes = spheres ? sizeof(push) : 72;
+            gpu::ShadowSpherePush push{atlas.setup.views[v].clipFromWorld, 0, 0, atlas.lightRays[v]};
             for (const GpuScene::Draw& d : in.scene.draws) {
               if (d.spheres != spheres || !d.castsShadows) continue;  // lights' visible shapes cast nothing
               if (!spheres) setShadowCulling(pc.cmd, d, in.scene.instanceRecords[d.instance]);
               push.instance = d.instance;
               push.geometry = d.geometry;
-              vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, bytes, &push);
+              if (spheres)
+                pipe.push(pc.cmd, push);
+              else
+                pipe.push(pc.cmd, gpu::ShadowMapPush{push.clipFromWorld, push.instance, push.geometry});
               vkCmdDraw(pc.cmd, spheres ? 36 : d.count, spheres ? d.count : 1, 0, 0);
             }
           }
@@ -83,23 +91,11 @@ graph::ImageHandle resolveShadows(graph::RenderGraph& graph, const FrameInputs& 
   graph.addPass(
       "shadow-resolve",
       [&](graph::PassBuilder& b) {
-        for (auto h : {gb.depth, gb.normals, atlas}) b.read(h, graph::Use::SampledCompute);
-        b.write(visibility, graph::Use::StorageWriteCompute);
+        b.pipeline(in.pipelines.compute("shadow_resolve.comp"));
+        b.bind("depthTex", gb.depth).bind("normalTex", gb.normals).bind("atlasTex", atlas);
+        b.bind("ShadowBlock", setup).bind("outVisibility", visibility);
       },
-      [gb, atlas, visibility, &setup, &in](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = in.pipelines.shadowResolve;
-        VkSampler s = in.nearest.handle();
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter()
-            .uniformBuffer(0, in.constants)
-            .sampledImage(1, pc.image(gb.depth).view(), s)
-            .sampledImage(2, pc.image(gb.normals).view(), s)
-            .sampledImage(3, pc.image(atlas).view(), s)
-            .uniformBuffer(4, setup)
-            .storageImage(5, pc.image(visibility).view())
-            .push(pc.cmd, pipe);
-        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
-      });
+      [size = in.size](graph::PassContext& pc) { vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1); });
   return visibility;
 }
 

@@ -1,8 +1,7 @@
 // Pass 8: tonemap and output, and the copy of results back to the host.
-#include <cstring>
-
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
+#include "shaders/shared/push.h"
 
 namespace rayster::render {
 
@@ -12,22 +11,10 @@ graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, gra
       "ldr", {kLdrFormat, in.size.width, in.size.height, 1, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
   graph.addPass(
       "tonemap",
-      [&](graph::PassBuilder& b) {
-        b.read(hdr, graph::Use::SampledCompute);
-        b.write(ldr, graph::Use::StorageWriteCompute);
-      },
-      [hdr, ldr, tone, &in](graph::PassContext& pc) {
-        const rhi::Pipeline& pipe = in.pipelines.tonemap;
-        vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.handle());
-        rhi::DescriptorWriter()
-            .sampledImage(1, pc.image(hdr).view(), in.nearest.handle())
-            .storageImage(2, pc.image(ldr).view())
-            .push(pc.cmd, pipe);
-        const float dither = tone.dither ? 1.0f : 0.0f;
-        uint32_t push[5] = {in.size.width, in.size.height, tone.seed, uint32_t(tone.op), 0};
-        std::memcpy(&push[4], &dither, sizeof(float));
-        vkCmdPushConstants(pc.cmd, pipe.layout(), pipe.stages(), 0, sizeof(push), push);
-        vkCmdDispatch(pc.cmd, (in.size.width + 7) / 8, (in.size.height + 7) / 8, 1);
+      [&](graph::PassBuilder& b) { b.pipeline(in.pipelines.compute("tonemap.comp")).bind("hdrTex", hdr).bind("outLdr", ldr); },
+      [tone, size = in.size](graph::PassContext& pc) {
+        pc.push(gpu::TonemapPush{{size.width, size.height}, tone.seed, uint32_t(tone.op), tone.dither ? 1.0f : 0.0f});
+        vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
       });
   return ldr;
 }

@@ -9,6 +9,7 @@
 #extension GL_EXT_nonuniform_qualifier : require
 
 #include "shared/types.h"
+#include "shared/push.h"
 
 const float kPi = 3.14159265358979;
 

@@ -76,7 +76,7 @@ class Denoise : public ::testing::Test {
     auto created = rhi::Context::create({/*validation*/ true, /*requireRayTracing*/ false, ""});
     if (!created) GTEST_SKIP() << "no Vulkan device: " << created.error().message;
     ctx_ = std::move(created.value());
-    pipes_ = std::make_unique<DenoisePipelines>(DenoisePipelines::create(*ctx_));
+    pipes_ = std::make_unique<rhi::PipelineLibrary>(*ctx_, VK_NULL_HANDLE);
     sampler_ = rhi::Sampler(*ctx_, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
     commands_ = std::make_unique<rhi::CommandList>(*ctx_);
   }
@@ -192,7 +192,7 @@ class Denoise : public ::testing::Test {
 
  protected:
   std::unique_ptr<rhi::Context> ctx_;
-  std::unique_ptr<DenoisePipelines> pipes_;
+  std::unique_ptr<rhi::PipelineLibrary> pipes_;
   rhi::Sampler sampler_;
   std::unique_ptr<rhi::CommandList> commands_;
   graph::TransientPool pool_;

@@ -96,7 +96,12 @@ class PipelineCacheDevice : public ::testing::Test {
     EXPECT_NE(ctx->pipelineCache(), VkPipelineCache(VK_NULL_HANDLE));
     const long loaded = long(ctx->pipelineCacheState()->loadedBytes());
     if (file) *file = ctx->pipelineCacheState()->path();
-    { auto pipelines = render::DenoisePipelines::create(*ctx); }
+    {
+      rhi::PipelineLibrary pipelines(*ctx, VK_NULL_HANDLE);
+      for (const char* shader : {"surface.comp", "shadow_temporal.comp", "shadow_atrous.comp", "shadow_atrous_2.comp",
+                                 "svgf_temporal.comp", "svgf_atrous.comp", "svgf_atrous_history.comp"})
+        pipelines.compute(shader);
+    }
     ctx->waitIdle();
     ctx->collectGarbage();
     EXPECT_EQ(ctx->validationErrors(), 0u);

@@ -101,7 +101,7 @@ class TonemapDevice : public ::testing::Test {
     EXPECT_TRUE(scene.ok());
     auto gpu = uploadScene(*ctx_, *scene);
     EXPECT_TRUE(gpu.ok());
-    Pipelines pipelines = Pipelines::create(*ctx_, gpu->bindless->layout());
+    rhi::PipelineLibrary pipelines(*ctx_, gpu->bindless->layout());
     rhi::Sampler nearest(*ctx_, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
     rhi::Sampler linear(*ctx_, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
     rhi::Buffer constants(*ctx_, 256, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, rhi::MemoryUsage::Upload, "constants");
@@ -116,7 +116,8 @@ class TonemapDevice : public ::testing::Test {
     graph::ResourceState stagingState, hdrState, readbackState;
     graph::TransientPool transients;
     graph::RenderGraph graph(ctx_.get(), &transients);
-    FrameInputs in{pipelines, *gpu, constants, nearest, linear, {w, h}, gpu->bindless->set()};
+    const graph::AccelHandle tlas = beginFrameGraph(graph, *gpu, constants, nearest);
+    FrameInputs in{pipelines, *gpu, constants, nearest, linear, {w, h}, tlas};
     graph::BufferHandle src = graph.importBuffer("hdr-staging", &staging, &stagingState);
     graph::ImageHandle hdr = graph.importImage("hdr-constant", &hdrImage, &hdrState);
     graph.addPass(
