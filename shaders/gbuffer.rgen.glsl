@@ -1,18 +1,29 @@
 #version 460
+// variant: raw_primary.rgen RAW_RATE
 #extension GL_EXT_ray_tracing : require
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
 #include "lib/ray_flags.glsl"
+#ifndef RAW_RATE
 #include "lib/textures.glsl"
 #include "lib/surface.glsl"
 #include "lib/sphere.glsl"
 #include "lib/primary_payload.glsl"
 #include "lib/hit_surface.glsl"
 #include "lib/motion.glsl"
+#endif
 
 // Traced primary rays (--primary rt): writes the same G-buffer as the raster pass. Depth goes to
 // R32F (D32 is no storage format) as the same clip-space depth the rasteriser would produce.
+// RAW_RATE (raw_primary.rgen, the raw ray rate of gbuffer-traced, rayster bench --raw-rays): the
+// same primary rays, with a closest-hit shader that only marks the hit (raw.rchit: 2) and a trivial
+// miss (shadow.rmiss: 1), and one 16-bit write per pixel instead of the G-buffer's seven.
 layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
+#ifdef RAW_RATE
+layout(set = 0, binding = 2, r16f) uniform writeonly image2D outHit;
+
+layout(location = 0) rayPayloadEXT uint hit;
+#else
 layout(set = 0, binding = 2, r32f) uniform writeonly image2D outDepth;
 layout(set = 0, binding = 3, rgba16_snorm) uniform writeonly image2D outNormals;
 layout(set = 0, binding = 4, rgba8) uniform writeonly image2D outAlbedo;
@@ -23,16 +34,34 @@ layout(set = 0, binding = 8, rg16f) uniform writeonly image2D outMotion;
 layout(set = 0, binding = 9, rgba8) uniform writeonly image2D outSpecular;
 
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
+#endif
+
+// The camera ray through pixel px's centre, traced into the payload.
+void tracePrimaryRay(ivec2 px, out vec3 origin, out vec3 dir) {
+  vec2 uv = (vec2(px) + 0.5) / vec2(gl_LaunchSizeEXT.xy);
+  origin = frame.cameraPosition.xyz;
+  dir = cameraRayDirection(frame.worldFromClip, uv, origin);
+  uint flags = sceneRayFlags();
+  traceRayEXT(tlas, flags, kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+}
+
+#ifdef RAW_RATE
 
 void main() {
   ivec2 px = ivec2(gl_LaunchIDEXT.xy);
-  vec2 uv = (vec2(px) + 0.5) / vec2(gl_LaunchSizeEXT.xy);
-  vec3 origin = frame.cameraPosition.xyz;
-  vec3 dir = cameraRayDirection(frame.worldFromClip, uv, origin);
+  vec3 origin, dir;
+  hit = 0u;
+  tracePrimaryRay(px, origin, dir);
+  imageStore(outHit, px, vec4(float(hit)));
+}
 
+#else
+
+void main() {
+  ivec2 px = ivec2(gl_LaunchIDEXT.xy);
+  vec3 origin, dir;
   payload.t = -1.0;
-  uint flags = sceneRayFlags();
-  traceRayEXT(tlas, flags, kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+  tracePrimaryRay(px, origin, dir);
 
   if (payload.t < 0.0) {
     imageStore(outDepth, px, vec4(kBackgroundDepth));
@@ -62,3 +91,5 @@ void main() {
   InstanceRecord inst = Instances(frame.instances).i[payload.instance];
   imageStore(outMotion, px, vec4(motionFromWorld(sp.position, previousWorld(inst, sp.position)), 0.0, 0.0));
 }
+
+#endif

@@ -1,18 +1,21 @@
 #version 460
+// variant: raw_indirect.rgen RAW_RATE
 #extension GL_EXT_ray_tracing : require
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
 #include "lib/ray_flags.glsl"
+#include "lib/lights.glsl"
+#include "lib/light_select.glsl"
+#include "lib/light_ray.glsl"
+#ifndef RAW_RATE
 #include "lib/textures.glsl"
 #include "lib/surface.glsl"
 #include "lib/sphere.glsl"
 #include "lib/primary_payload.glsl"
 #include "lib/hit_surface.glsl"
-#include "lib/lights.glsl"
-#include "lib/light_select.glsl"
 #include "lib/brdf.glsl"
 #include "lib/environment.glsl"
-#include "lib/light_ray.glsl"
+#endif
 
 // One-bounce indirect diffuse from the G-buffer (docs/techniques.md §16): one cosine-weighted ray about
 // the shading normal per pixel per frame. A hit is shaded with its emission, direct light from one
@@ -23,14 +26,84 @@
 // pass already counts as direct light) is not counted again. Background and indirect off write 0.
 // At quarter rate (--indirect-rate quarter) one pixel per 2×2 block, rotating over 4 frames;
 // indirect_fill.comp gives the other three a depth- and normal-weighted mean of traced ones.
+// RAW_RATE (raw_indirect.rgen, the raw ray rate of rt-indirect, rayster bench --raw-rays). Replayed
+// exactly: the bounce ray (lib/indirect_ray.glsl, same random stream). Approximated: its shadow ray.
+// The twin's closest hit (raw_t.rchit) returns only the hit distance, so the shading point is
+// origin + t·dir and, lacking the hit's normals, the light is picked (selectLight) and the "below
+// the surface" test made with the normal facing the bounce ray's origin (−dir); the shadow ray
+// (lib/light_ray.glsl, same offset) then goes from the same point to the same kind of light sample,
+// so its length and coherence match, though not its exact direction. Rays are traced opaque with
+// trivial misses. Output (R16F): 0 where no bounce ray is traced, 0.5 where it misses, 1 where it
+// hits. At quarter rate the same block pixels trace and the block's other pixels get
+// kIndirectSkipped, so a test sees which pixel of each block traced.
 layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = 2) uniform sampler2D depthTex;
 layout(set = 0, binding = 3) uniform sampler2D normalTex;
+#ifdef RAW_RATE
+layout(set = 0, binding = 4, r16f) uniform writeonly image2D outHit;
+layout(location = 0) rayPayloadEXT uint hitT;  // raw_t.rchit: the hit distance's bits; raw.rmiss keeps it
+#else
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D outIndirect;
-
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
+#endif
 layout(location = 1) rayPayloadEXT uint visible;
 
+// Every ray's flags: the scene's (lib/ray_flags.glsl), or at raw rate opaque.
+uint rayFlags() {
+#ifdef RAW_RATE
+  return gl_RayFlagsOpaqueEXT | gl_RayFlagsCullBackFacingTrianglesEXT;
+#else
+  return sceneRayFlags();
+#endif
+}
+
+// The shadow ray towards light `i` from a bounce hit at p (geometric normal ng): 1 visible, 0 not
+// or no ray (below the surface).
+float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
+  vec3 origin, dir;
+  float tMax;
+  if (!lightShadowRay(i, p, ng, hitRayOffset(p), rng, origin, dir, tMax)) return 0.0;
+  visible = 0u;
+  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | rayFlags(),
+              kMaskCastsShadow, 0, 0, 1, origin, 0.0, dir, tMax, 1);
+  return float(visible);
+}
+
+#include "lib/indirect_ray.glsl"
+
+#ifdef RAW_RATE
+
+const float kIndirectSkipped = 0.25;  // a pixel of a quarter-rate block that another pixel traces for
+
+void main() {
+  ivec2 px = indirectPixel(gl_LaunchIDEXT.xy);
+  if (indirectQuarterRate()) {
+    ivec2 size = ivec2(frame.size);
+    for (int k = 0; k < 4; ++k) {
+      ivec2 q = 2 * ivec2(gl_LaunchIDEXT.xy) + ivec2(k & 1, k >> 1);
+      if (q != px && all(lessThan(q, size))) imageStore(outHit, q, vec4(kIndirectSkipped));
+    }
+  }
+  vec3 origin, dir;
+  vec4 value;
+  uint rng;
+  float result = 0.0;
+  if (indirectRay(px, origin, dir, value, rng)) {
+    hitT = floatBitsToUint(-1.0);
+    traceRayEXT(tlas, rayFlags(), kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+    float t = uintBitsToFloat(hitT);
+    result = t < 0.0 ? 0.5 : 1.0;
+    if (t >= 0.0) {
+      vec3 p = origin + t * dir;
+      float invPdf;
+      uint i = selectLight(p, -dir, rng, invPdf);
+      if (i < frame.lightCount) lightVisibility(i, p, -dir, rng);
+    }
+  }
+  imageStore(outHit, px, vec4(result));
+}
+
+#else
 
 // Direct light at a hit from one light chosen in proportion to its importance (lib/light_select.glsl:
 // exact over few lights, resampled candidates over many), divided by the probability of the pick.
@@ -42,18 +115,10 @@ vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, inout
   vec3 l;
   float dist;
   vec3 incident = lightIncident(light, p, l, dist);
-  vec3 origin, dir;
-  float tMax;
-  if (!lightShadowRay(chosen, p, ng, hitRayOffset(p), rng, origin, dir, tMax)) return vec3(0.0);
-  visible = 0u;
-  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | sceneRayFlags(),
-              kMaskCastsShadow, 0, 0, 1, origin, 0.0, dir, tMax, 1);
-  if (visible == 0u) return vec3(0.0);
+  if (lightVisibility(chosen, p, ng, rng) == 0.0) return vec3(0.0);
   float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
   return evalBsdfCos(bsdf, n, v, l, 0.5 * widen) * incident * invPdf;
 }
-
-#include "lib/indirect_ray.glsl"
 
 void main() {
   ivec2 px = indirectPixel(gl_LaunchIDEXT.xy);  // at quarter rate, its 2×2 block's pixel of this frame
@@ -65,7 +130,7 @@ void main() {
     return;
   }
   payload.t = -1.0;
-  traceRayEXT(tlas, sceneRayFlags(), kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+  traceRayEXT(tlas, rayFlags(), kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
   vec3 radiance;
   if (payload.t < 0.0) {
     radiance = environmentRadiance(dir);
@@ -84,3 +149,5 @@ void main() {
   // E = π·L for a cosine-weighted sample; clamp rare fireflies to a bright but finite value.
   imageStore(outIndirect, px, vec4(min(kPi * radiance, vec3(256.0)), 1.0));
 }
+
+#endif

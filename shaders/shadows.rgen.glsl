@@ -1,4 +1,5 @@
 #version 460
+// variant: raw_shadows.rgen RAW_RATE
 #extension GL_EXT_ray_tracing : require
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
@@ -9,6 +10,9 @@
 // a uniform sample of the light's solid angle. gl_LaunchIDEXT.z is the light's layer.
 // Output: 1 visible, 0 occluded; pixels facing away from the light (N·L <= 0) and background
 // pixels write 0, which lighting multiplies with a zero N·L anyway.
+// RAW_RATE (raw_shadows.rgen, the raw ray rate of rt-shadows, rayster bench --raw-rays): the very
+// same rays, traced opaque (no alpha any-hit) with a trivial miss, so the pass's time over this
+// one's is the share of the device's raw rate it reaches. Same output.
 layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = 2) uniform sampler2D depthTex;
 layout(set = 0, binding = 3) uniform sampler2D normalTex;
@@ -28,8 +32,13 @@ void main() {
     return;
   }
   visible = 0u;
+#ifdef RAW_RATE
+  uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | gl_RayFlagsOpaqueEXT |
+               gl_RayFlagsCullBackFacingTrianglesEXT;
+#else
   // Opaque (no any-hit) only when no geometry needs alpha testing (docs/techniques.md §4).
   uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | sceneRayFlags();
+#endif
   traceRayEXT(tlas, flags, kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, tMax, 0);
   imageStore(outVisibility, ivec3(px, layer), vec4(float(visible)));
 }

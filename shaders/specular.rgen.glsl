@@ -1,21 +1,24 @@
 #version 460
+// variant: raw_specular.rgen RAW_RATE
 #extension GL_EXT_ray_tracing : require
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
 #include "lib/ray_flags.glsl"
 #include "lib/textures.glsl"
 #include "lib/surface.glsl"
-#include "lib/sphere.glsl"
-#include "lib/primary_payload.glsl"
-#include "lib/hit_surface.glsl"
 #include "lib/lights.glsl"
 #include "lib/light_select.glsl"
 #include "lib/brdf.glsl"
-#include "lib/environment.glsl"
 #include "lib/dfg.glsl"
 #include "lib/light_ray.glsl"
 #include "lib/specular_weight.glsl"
 #include "shared/vndf.h"
+#ifndef RAW_RATE
+#include "lib/sphere.glsl"
+#include "lib/primary_payload.glsl"
+#include "lib/hit_surface.glsl"
+#include "lib/environment.glsl"
+#endif
 
 // Ray-traced reflections and refractions (docs/techniques.md §12, §13): from every G-buffer pixel whose
 // material is a mirror, glossy (one GGX VNDF sample per pixel up to the glossy threshold) or glass,
@@ -25,33 +28,96 @@
 // Beer–Lambert absorption inside volumes, thin walls. Every hit is shaded by shadeSurface(), the
 // lighting pass's own function, with shadow rays. Output: the specular radiance the lighting pass
 // adds (the diffuse layer of the first surface is the lighting pass's).
+// RAW_RATE (raw_specular.rgen, the raw ray rate of rt-specular, rayster bench --raw-rays). Replayed
+// exactly: the first ray of every path (lib/specular_path.glsl: the same mirror, glossy VNDF and
+// Fresnel choices, the same half-rate checkerboard). Approximated: the shadow rays at its hit. The
+// twin's closest hit (raw_t.rchit) returns only the distance, so the shading point is origin + t·dir
+// with the normal facing the ray (−dir), and the pass's light loop is replayed as such: one
+// importance-picked light after a glossy sample or in many-light mode, else every light that reaches
+// the point. Not replayed: the deeper bounces, whose directions need the materials at the hits
+// (mostly glass and mirror pixels); the pass's figure over this one's is therefore the share of the
+// raw rate its first bounce (and the shading around it) reaches, and deeper bounces count against
+// it. Rays are opaque, misses trivial. Output (R16F): 0 where the pass traces nothing (its alpha 0),
+// 0.125 where a glossy sample leaves below the surface (nothing traced, 0 written), 0.25 a half-rate
+// skip (filled from the neighbours), 0.5 the first ray missed, 1 it hit.
 layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = 2) uniform sampler2D depthTex;
 layout(set = 0, binding = 3) uniform sampler2D normalTex;
 layout(set = 0, binding = 4) uniform sampler2D albedoTex;
 layout(set = 0, binding = 5) uniform sampler2D materialTex;
+#ifdef RAW_RATE
+layout(set = 0, binding = 6, r16f) uniform writeonly image2D outHit;
+#else
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D outSpecular;
+#endif
 layout(set = 0, binding = 7) uniform sampler2D emissiveTex;  // .a: the first surface's exact ior
 layout(set = 0, binding = 8) uniform sampler2D specularGbufTex;  // encodeSpecular(): F0 tint, strength
 
+#ifdef RAW_RATE
+layout(location = 0) rayPayloadEXT uint hitT;  // raw_t.rchit: the hit distance's bits; raw.rmiss keeps it
+#else
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
+#endif
 layout(location = 1) rayPayloadEXT uint visible;
 
+// Every ray's flags: the scene's (lib/ray_flags.glsl), or at raw rate opaque.
+uint rayFlags() {
+#ifdef RAW_RATE
+  return gl_RayFlagsOpaqueEXT | gl_RayFlagsCullBackFacingTrianglesEXT;
+#else
+  return sceneRayFlags();
+#endif
+}
 
 float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
   vec3 origin, dir;
   float tMax;
   if (!lightShadowRay(i, p, ng, hitRayOffset(p), rng, origin, dir, tMax)) return 0.0;
   visible = 0u;
-  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | sceneRayFlags(),
+  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | rayFlags(),
               kMaskCastsShadow, 0, 0, 1, origin, 0.0, dir, tMax, 1);
   return float(visible);
 }
+
+#include "lib/specular_path.glsl"
+
+#ifdef RAW_RATE
+
+void main() {
+  ivec2 px = ivec2(gl_LaunchIDEXT.xy);
+  vec3 origin, dir, beta;
+  bool glossy;
+  vec4 result;
+  uint rng;
+  if (!specularFirstRay(px, origin, dir, beta, glossy, result, rng)) {
+    imageStore(outHit, px, vec4(result.a == kHalfRateSkipped ? 0.25 : result.a > 0.0 ? 0.125 : 0.0));
+    return;
+  }
+  hitT = floatBitsToUint(-1.0);
+  traceRayEXT(tlas, rayFlags(), kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+  float t = uintBitsToFloat(hitT);
+  if (t >= 0.0) {
+    vec3 p = origin + t * dir;
+    if (glossy || frame.manyLights != 0u) {  // shadeDirect()'s one pick (lib/shading.glsl)
+      float invPdf;
+      uint i = selectLight(p, -dir, rng, invPdf);
+      if (i < frame.lightCount) lightVisibility(i, p, -dir, rng);
+    } else {  // its loop over the lights that reach p
+      for (uint i = 0u; i < frame.lightCount; ++i) {
+        vec3 l;
+        float dist;
+        if (!all(equal(lightIncident(loadLight(i), p, l, dist), vec3(0.0)))) lightVisibility(i, p, -dir, rng);
+      }
+    }
+  }
+  imageStore(outHit, px, vec4(t < 0.0 ? 0.5 : 1.0));
+}
+
+#else
+
 void skipLightVisibility(inout uint rng) { skipLightShadowRay(rng); }
 
 #include "lib/shading.glsl"
-
-#include "lib/specular_path.glsl"
 
 void main() {
   ivec2 px = ivec2(gl_LaunchIDEXT.xy);
@@ -66,7 +132,7 @@ void main() {
   vec3 radiance = vec3(0.0);
   for (uint bounce = 1u; bounce <= min(frame.maxSpecularBounces, kMaxSpecularBounces); ++bounce) {
     payload.t = -1.0;
-    traceRayEXT(tlas, sceneRayFlags(), kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+    traceRayEXT(tlas, rayFlags(), kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
     if (payload.t < 0.0) {
       radiance += beta * environmentRadiance(dir);
       break;
@@ -107,3 +173,5 @@ void main() {
   // Clamp fireflies of the stochastic glass paths to a bright but finite value before accumulation.
   imageStore(outSpecular, px, vec4(min(radiance, vec3(64.0)), 1.0));
 }
+
+#endif

@@ -1,5 +1,5 @@
-// Body of shadow_atrous.comp (every layer count) and shadow_atrous_2.comp (at most two layers),
-// which define SHADOW_ATROUS_LAYERS.
+// Body of shadow_atrous.comp (every layer count) and of its variant shadow_atrous_2.comp (at most two
+// layers; cmake/shaders.cmake), which define SHADOW_ATROUS_LAYERS.
 #extension GL_EXT_control_flow_attributes : require
 #include "lib/common.glsl"
 #include "lib/denoise.glsl"

@@ -1,5 +1,5 @@
-// Body of svgf_atrous.comp and svgf_atrous_history.comp (the latter defines
-// SVGF_WRITE_HISTORY): two pipelines, so the plain iterations bind no history image at all.
+// Body of svgf_atrous.comp and of its variant svgf_atrous_history.comp (cmake/shaders.cmake; it
+// defines SVGF_WRITE_HISTORY): two pipelines, so the plain iterations bind no history image at all.
 #extension GL_EXT_control_flow_attributes : require
 #include "lib/common.glsl"
 #include "lib/denoise.glsl"
