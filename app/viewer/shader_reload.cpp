@@ -6,6 +6,8 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <sstream>
+#include <string_view>
 
 #include "shaders/embedded.h"
 
@@ -73,14 +75,47 @@ ShaderReloadResult ShaderReloader::poll(bool force) {
   return result;
 }
 
+std::vector<ShaderVariant> shaderVariants(const fs::path& source) {
+  std::vector<ShaderVariant> variants;
+  std::ifstream in(source);
+  constexpr std::string_view kTag = "// variant:";
+  for (std::string line; std::getline(in, line);) {
+    const size_t at = line.find_first_not_of(" \t");
+    if (at == std::string::npos || line.compare(at, kTag.size(), kTag) != 0) continue;
+    std::istringstream words(line.substr(at + kTag.size()));
+    ShaderVariant v;
+    if (!(words >> v.key)) continue;
+    for (std::string d; words >> d;) v.defines.push_back(d);
+    variants.push_back(std::move(v));
+  }
+  return variants;
+}
+
 ShaderReloadResult ShaderReloader::compile(const fs::path& source) {
+  ShaderReloadResult result = compileAs(source, shaderName(source), {});
+  if (!result.error.empty()) return result;
+  for (const ShaderVariant& v : shaderVariants(source)) {
+    ShaderReloadResult one = compileAs(source, v.key, v.defines);
+    result.reloaded.insert(result.reloaded.end(), one.reloaded.begin(), one.reloaded.end());
+    if (!one.error.empty()) {
+      result.error = one.error;
+      break;
+    }
+  }
+  return result;
+}
+
+ShaderReloadResult ShaderReloader::compileAs(const fs::path& source, const std::string& name,
+                                             const std::vector<std::string>& defines) {
   ShaderReloadResult result;
-  const std::string name = shaderName(source);
   const std::string stage = name.substr(name.rfind('.') + 1);
   const fs::path out = fs::temp_directory_path() / ("rayster-reload-" + std::to_string(getpid()) + "-" + name + ".spv");
   // The flags of cmake/shaders.cmake; includes resolve against the source tree's shaders/.
-  const std::string cmd = quote(glslc_.string()) + " -fshader-stage=" + stage + " --target-env=vulkan1.3 -O -g -I " +
-                          quote(dir_.string()) + " -o " + quote(out.string()) + " " + quote(source.string()) + " 2>&1";
+  std::string flags;
+  for (const std::string& d : defines) flags += " " + quote("-D" + d);
+  const std::string cmd = quote(glslc_.string()) + " -fshader-stage=" + stage + " --target-env=vulkan1.3 -O -g" + flags +
+                          " -I " + quote(dir_.string()) + " -o " + quote(out.string()) + " " + quote(source.string()) +
+                          " 2>&1";
   std::string output;
   if (FILE* pipe = popen(cmd.c_str(), "r")) {
     char buf[4096];

@@ -3,7 +3,7 @@
 // ray rate it reaches (its rays are the same; only shading and memory traffic differ). Exact
 // replays: primary, shadow, AO and many-light direct rays, the indirect bounce ray and the specular
 // path's first ray. Approximate: the shadow rays at those bounce hits (the twins know only the hit
-// distance, not the hit's normal) and, for specular, no deeper bounces (raw_specular.rgen). At
+// distance, not the hit's normal) and, for specular, no deeper bounces (specular.rgen's RAW_RATE variant). At
 // quarter-rate indirect, raw-rt-indirect launches rt-indirect's quarter-size grid. Each twin's
 // raygen is the RAW_RATE variant of its pass's shader (cmake/shaders.cmake).
 #include <utility>
@@ -105,7 +105,7 @@ RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, co
   const uint64_t pixels = uint64_t(in.size.width) * in.size.height;
   const Reads surface = {{"depthTex", gb.depth}, {"normalTex", gb.normals}};
   if (effects.ao)
-    t.ao = traceTwin(graph, in, "raw-rt-ao", "rt-ao", pixels, "raw-ao", surface, "outVisibility", "raw_ao.rgen");
+    t.ao = traceTwin(graph, in, "raw-rt-ao", "rt-ao", pixels, "raw-ao", surface, "outAo", "raw_ao.rgen");
   if (effects.direct)
     t.direct = traceTwin(graph, in, "raw-rt-direct", "rt-direct", pixels, "raw-direct", surface, "outVisibility",
                          "raw_direct.rgen");

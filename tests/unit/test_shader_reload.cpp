@@ -55,5 +55,31 @@ TEST(ViewerShaderReload, ErrorKeepsOldModuleAndValidChangeReplacesIt) {
   shaders::setOverride(name, embedded);  // leave the process's shaders as built
 }
 
+// A source with `// variant:` lines reloads its variants too, compiled with their defines: editing
+// ao.rgen.glsl in a running viewer also refreshes its raw-rate twin.
+TEST(ViewerShaderReload, VariantsAreRecompiledWithTheirSource) {
+  // The source tree's own file, only read: compiled from the same path with the build's flags, the
+  // SPIR-V (which names its source file, -g) must equal what the build embedded.
+  const fs::path dir = fs::path(RAYSTER_SHADER_DIR);
+  const fs::path file = dir / "ao.rgen.glsl";
+  const std::vector<ShaderVariant> variants = shaderVariants(file);
+  ASSERT_EQ(variants.size(), 1u);
+  EXPECT_EQ(variants[0].key, "raw_ao.rgen");
+  EXPECT_EQ(variants[0].defines, std::vector<std::string>{"RAW_RATE"});
+
+  const std::vector<uint32_t> ao(shaders::get("ao.rgen").begin(), shaders::get("ao.rgen").end());
+  const std::vector<uint32_t> raw(shaders::get("raw_ao.rgen").begin(), shaders::get("raw_ao.rgen").end());
+  ShaderReloader reloader(RAYSTER_GLSLC, dir);
+  ShaderReloadResult r = reloader.compile(file);
+  EXPECT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.reloaded, (std::vector<std::string>{"ao.rgen", "raw_ao.rgen"}));
+  // Unchanged sources compile to what the build embedded, each with its own defines.
+  EXPECT_EQ(std::vector<uint32_t>(shaders::get("ao.rgen").begin(), shaders::get("ao.rgen").end()), ao);
+  EXPECT_EQ(std::vector<uint32_t>(shaders::get("raw_ao.rgen").begin(), shaders::get("raw_ao.rgen").end()), raw);
+  EXPECT_NE(ao, raw);
+  shaders::setOverride("ao.rgen", ao);
+  shaders::setOverride("raw_ao.rgen", raw);
+}
+
 } // namespace
 } // namespace rayster::app
