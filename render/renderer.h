@@ -4,6 +4,7 @@
 // lighting, tonemapping, readback.
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -68,6 +69,9 @@ struct RenderSettings {
   bool cameraPath = false;
   // Intermediate images to return (names in aovNames()), read back after the last frame.
   std::vector<std::string> aovs;
+  // The values of settings that pass files declare for themselves (render/settings_table.h
+  // PassSetting), as text by name; a setting not here has its default.
+  std::map<std::string, std::string, std::less<>> passSettings;
   float pathFps = 60.0f;  // frames per second of camera-path and animation playback
   // glTF node animations play from `time` seconds, one frame per 1/pathFps, looping; false holds
   // the pose at `time`.

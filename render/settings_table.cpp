@@ -172,8 +172,47 @@ std::string Setting::typeText() const {
   return "";
 }
 
+namespace {
+std::vector<Setting>& passSettings() {
+  static std::vector<Setting> settings;  // filled by PassSetting objects during static initialisation
+  return settings;
+}
+} // namespace
+
+PassSetting::PassSetting(Setting setting) { passSettings().push_back(std::move(setting)); }
+
+Setting passSwitch(std::string name, std::string group, std::string help, bool defaultOn, uint32_t uses,
+                   bool restarts) {
+  Setting s{name, SettingKind::Switch, std::move(help), {"on", "off"}, 0, 0, std::move(group), uses, restarts};
+  const std::string fallback = defaultOn ? "on" : "off";
+  s.get = [name, fallback](const RenderSettings& r) {
+    auto it = r.passSettings.find(name);
+    return it == r.passSettings.end() ? fallback : it->second;
+  };
+  s.set = [name, s](RenderSettings& r, std::string_view t) -> Status {
+    if (Status c = checkChoice(s, t); !c) return c;
+    r.passSettings[name] = std::string(t);
+    return okStatus();
+  };
+  return s;
+}
+
+bool passSwitchOn(const RenderSettings& settings, std::string_view name) {
+  const Setting* s = findSetting(name);
+  RAYSTER_ASSERT(s && s->kind == SettingKind::Switch, "passSwitchOn() of a name that is no registered switch");
+  return s->get(settings) == "on";
+}
+
 const std::vector<Setting>& settingsTable() {
-  static const std::vector<Setting> table = makeTable();
+  static const std::vector<Setting> table = [] {
+    std::vector<Setting> t = makeTable();
+    for (const Setting& s : passSettings()) {
+      for (const Setting& existing : t)
+        RAYSTER_ASSERT(existing.name != s.name, "a pass file declares a setting the table already has");
+      t.push_back(s);
+    }
+    return t;
+  }();
   return table;
 }
 

@@ -48,4 +48,17 @@ struct Setting {
 const std::vector<Setting>& settingsTable();
 const Setting* findSetting(std::string_view name);
 
+// A setting a pass file declares for itself, so that a new technique's switch touches no central
+// file: `const PassSetting kSetting{passSwitch("sky-visibility", "Effects", "help", false)};` at
+// namespace scope in the pass file. Its value lives in RenderSettings::passSettings; the frame
+// reads it with passSwitchOn(). The table lists it after the built-in entries (the command lines,
+// the viewer's panel and the JSON take it like any other). Registered before main() runs.
+struct PassSetting {
+  explicit PassSetting(Setting setting);
+};
+Setting passSwitch(std::string name, std::string group, std::string help, bool defaultOn, uint32_t uses = kUseAll,
+                   bool restarts = true);
+// The value of a pass file's switch (its default when never set).
+bool passSwitchOn(const RenderSettings& settings, std::string_view name);
+
 } // namespace rayster::render
