@@ -6,8 +6,12 @@
 #include "render/jitter.h"
 #include "render/passes/cull.h"
 #include "render/renderer_impl.h"
+#include "render/settings_table.h"
 
 namespace rayster::render {
+
+// Passes used only here, declared next to their one caller.
+graph::ImageHandle traceSkyVisibility(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
 
 namespace {
 
@@ -138,7 +142,8 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   // the neutral value in its place (render/neutral_images.h).
   const uint32_t lights = shadowLights();
   const bool ao = aoInShadowImage(s), indirect = indirectOn(s), specularPass = specularOn(s);
-  const bool denoise = s.denoise && (lights > 0 || ao || specularPass || indirect || manyLights);
+  const bool sky = passSwitchOn(s, "sky-visibility");
+  const bool denoise = s.denoise && (lights > 0 || ao || specularPass || indirect || manyLights || sky);
   FrameImages o;
   const graph::ImageHandle white = neutral.white(graph), black = neutral.black(graph);
   o.shadowRaw = o.shadow = o.aoRaw = o.ao = white;
@@ -195,6 +200,19 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
             .denoised;
     if (lights > 0) o.shadow = denoised;
     if (ao) o.ao = denoised;
+  }
+  if (sky) {  // an output only: kept by a utility pass, so it is computed (and timed) every frame
+    graph::ImageHandle v = traceSkyVisibility(graph, in, gb);
+    if (denoise) {
+      const auto h = graph.history("sky-visibility-history", shadowHistoryDesc(in.size, 1));
+      v = denoiseShadows(graph, dn, surface, motion, v, {h.previous, h.next}, temporalFor(h.frames), "sky-visibility")
+              .denoised;
+    }
+    graph.addPass("sky-visibility-output", [&](graph::PassBuilder& b) {
+      b.read(v, graph::Use::TransferSrc);
+      b.sideEffect();
+      b.kind(graph::PassKind::Utility);
+    }, [](graph::PassContext&) {});
   }
   if (s.rawRays) {
     traceRawPrimary(graph, in);
