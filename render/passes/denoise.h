@@ -48,7 +48,8 @@ rhi::ImageDesc shadowHistoryDesc(VkExtent2D size, uint32_t lights);
 rhi::ImageDesc svgfColorHistoryDesc(VkExtent2D size);
 rhi::ImageDesc svgfMomentsHistoryDesc(VkExtent2D size);
 
-// Layer counts up to this use the small shadow à-trous pipeline (shaders/shadow_atrous_2.comp.glsl).
+// Layer counts up to this use the small shadow à-trous pipeline (shadow_atrous_2.comp, a variant of
+// shaders/shadow_atrous.comp.glsl).
 inline constexpr uint32_t kShadowAtrousSmallLayers = 2;
 
 // What every denoise pass needs besides its images (no scene, so tests can run them alone);
