@@ -123,10 +123,14 @@ json configResult(const rhi::Context& ctx, const BenchConfig& c, const render::R
                 {"tlas_bytes", st.tlasBytes},
                 {"build_ms", st.accelBuildMs},
                 {"upload_ms", st.uploadMs}};
-  j["memory"] = {{"used_bytes", st.deviceBytesUsed}, {"reserved_bytes", st.deviceBytesReserved},
-                 {"image_bytes", st.imageBytes},     {"buffer_bytes", st.bufferBytes},
-                 {"accel_bytes", st.accelBytes},     {"host_bytes", st.hostBytes},
-                 {"frame_bytes", st.frameBytes},     {"transient_bytes", st.transientBytes},
+  j["memory"] = {{"used_bytes", st.deviceBytesUsed},
+                 {"reserved_bytes", st.deviceBytesReserved},
+                 {"image_bytes", st.imageBytes},
+                 {"buffer_bytes", st.bufferBytes},
+                 {"accel_bytes", st.accelBytes},
+                 {"host_bytes", st.hostBytes},
+                 {"frame_bytes", st.frameBytes},
+                 {"transient_bytes", st.transientBytes},
                  {"transient_unaliased_bytes", st.transientUnaliasedBytes},
                  {"history_bytes", st.historyBytes}};
   return j;
@@ -235,7 +239,7 @@ int parentCommand(const BenchOptions& o) {
   if (ec) return fail(makeError(ExitCode::OutputFailed, "cannot create {}: {}", work.string(), ec.message()));
 
   json results = {{"schema", "rayster-bench/1"}, {"plan", plan->name}, {"date", isoDate()},
-                  {"commit", buildCommit()},    {"device", ""},       {"driver", ""}};
+                  {"commit", buildCommit()},     {"device", ""},       {"driver", ""}};
   char host[256] = {};
   gethostname(host, sizeof host - 1);
   results["host"] = host;

@@ -30,11 +30,11 @@ std::string BenchConfig::id() const {
 }
 
 nlohmann::json BenchConfig::toJson() const {
-  return {{"sweep", sweep},     {"axis", axis},          {"scene", scene},
-          {"width", width},     {"height", height},      {"mode", mode},
-          {"primary", primary}, {"max_depth", maxDepth}, {"shadow_lights", shadowLights},
-          {"warmup", warmup},   {"frames", frames},      {"seed", seed},
-          {"raw_rays", rawRays}, {"culling", culling},   {"settings", settings}};
+  return {{"sweep", sweep},      {"axis", axis},          {"scene", scene},
+          {"width", width},      {"height", height},      {"mode", mode},
+          {"primary", primary},  {"max_depth", maxDepth}, {"shadow_lights", shadowLights},
+          {"warmup", warmup},    {"frames", frames},      {"seed", seed},
+          {"raw_rays", rawRays}, {"culling", culling},    {"settings", settings}};
 }
 
 Result<BenchConfig> BenchConfig::fromJson(const nlohmann::json& j) {

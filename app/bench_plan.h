@@ -22,8 +22,8 @@ struct BenchConfig {
   uint32_t shadowLights = 8;
   uint32_t warmup = 16, frames = 64;  // frames measured after the warm-up
   uint32_t seed = 1;
-  bool rawRays = false;    // also time the raw-rate twins of the primary and shadow rays
-  bool culling = true;     // GPU culling of the raster G-buffer's draws (ids of "off" end in /nocull)
+  bool rawRays = false;  // also time the raw-rate twins of the primary and shadow rays
+  bool culling = true;   // GPU culling of the raster G-buffer's draws (ids of "off" end in /nocull)
   // Settings-table values (render/settings_table.h) by name, e.g. {"ao": "off"}: applied after the
   // fields above; ids list them ("/ao=off").
   std::map<std::string, std::string> settings;
@@ -54,8 +54,8 @@ bool parseSizeText(const std::string& text, uint32_t& w, uint32_t& h);
 // The cross product of the axes, as one sweep whose x axis is the first axis with several values.
 Result<BenchPlan> planFromAxes(const BenchAxes& axes);
 // A JSON plan: {"name", "warmup", "frames", "seed", "sweeps": [{"name", "scenes", "sizes", "modes",
-// "primaries", "max_depth", "shadow_lights", "warmup", "frames", "raw_rays", "culling", "axis"}]} (sweep fields default to the
-// top).
+// "primaries", "max_depth", "shadow_lights", "warmup", "frames", "raw_rays", "culling", "axis"}]} (sweep fields default
+// to the top).
 Result<BenchPlan> loadPlan(const std::string& path);
 
 }  // namespace rayster::app

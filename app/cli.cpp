@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "app/bench_command.h"
 #include "app/build_info.h"
@@ -53,7 +53,8 @@ struct GlobalOptions {
 
 void addGlobalOptions(CLI::App& cli, GlobalOptions& g) {
   cli.add_flag("-v,--verbose", g.verbose, "Print debug details (device, scene statistics)");
-  cli.add_flag("--validation", g.validation, "Enable Vulkan validation (also RAYSTER_VALIDATION=1); any error fails the run");
+  cli.add_flag("--validation", g.validation,
+               "Enable Vulkan validation (also RAYSTER_VALIDATION=1); any error fails the run");
   cli.add_option("--device", g.device, "Use the device whose name contains this text");
   cli.add_flag("--no-debug-labels", g.noLabels, "Do not emit debug labels and object names (on by default)");
   cli.set_version_flag("--version", fmt::format("rayster {} (commit {})", buildVersion(), buildCommit()),
@@ -74,7 +75,9 @@ struct RenderArgs {
 // Scene, outputs, size and sampling.
 void addRenderImageOptions(CLI::App* render, RenderArgs& a) {
   RenderOptions& ro = a.options;
-  render->add_option("scene", ro.scene, "Scene: a .gltf/.glb, .obj or .json scene file, or builtin:NAME (cornell, whitted, spheres, instances[:N]); default builtin:whitted");
+  render->add_option("scene", ro.scene,
+                     "Scene: a .gltf/.glb, .obj or .json scene file, or builtin:NAME (cornell, whitted, spheres, "
+                     "instances[:N]); default builtin:whitted");
   render->add_option("-o,--output", ro.output, "Output image, .png (tonemapped) or .exr (linear HDR)");
   render->add_option("--hdr", ro.hdrOutput, "Also write the linear HDR image to this .exr");
   render->add_flag("--exr-float", ro.exrFloat,
@@ -154,13 +157,15 @@ int runRender(RenderArgs& a, const GlobalOptions& g) {
 }
 
 CLI::App* addBenchCommand(CLI::App& cli, BenchOptions& bo) {
-  CLI::App* bench = cli.add_subcommand(
-      "bench", "Time scenes x sizes x modes (one process per configuration): per-pass GPU ms, rays, memory; "
-               "writes JSON, CSV and an SVG plot. --compare A.json B.json reports significant changes");
+  CLI::App* bench =
+      cli.add_subcommand("bench",
+                         "Time scenes x sizes x modes (one process per configuration): per-pass GPU ms, rays, memory; "
+                         "writes JSON, CSV and an SVG plot. --compare A.json B.json reports significant changes");
   bench->add_option("scenes", bo.axes.scenes, "Scenes (as for render); default builtin:whitted");
   bench->add_option("--size,--sizes", bo.axes.sizes, "Image sizes WxH, comma-separated (default 1920x1080)")
       ->delimiter(',');
-  bench->add_option("--mode,--modes", bo.axes.modes, "Modes, comma-separated: hybrid, pathtrace, raster")->delimiter(',');
+  bench->add_option("--mode,--modes", bo.axes.modes, "Modes, comma-separated: hybrid, pathtrace, raster")
+      ->delimiter(',');
   bench->add_option("--primary", bo.axes.primaries, "G-buffer producers, comma-separated: raster, rt, auto")
       ->delimiter(',');
   bench->add_option("--max-depth", bo.axes.maxDepths, "Specular bounce depths, comma-separated (1-8, default 7)")
@@ -178,8 +183,7 @@ CLI::App* addBenchCommand(CLI::App& cli, BenchOptions& bo) {
   bench->add_option("--json", bo.json, "Results (default bench-out/bench.json); CSV and SVG beside it");
   bench->add_option("--csv", bo.csv, "CSV output (default: the --json path with .csv)");
   bench->add_option("--svg", bo.svg, "SVG plot (default: the --json path with .svg)");
-  bench->add_option("--compare", bo.compare, "Compare two result files instead of running: A.json B.json")
-      ->expected(2);
+  bench->add_option("--compare", bo.compare, "Compare two result files instead of running: A.json B.json")->expected(2);
   bench->add_option("--min-change", bo.minChange,
                     "--compare reports changes of the median larger than this fraction (default 0.05)");
   bench->add_flag("--fail-on-change", bo.failOnChange, "--compare exits 9 when it reports a change");
@@ -194,18 +198,21 @@ CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& co) {
       "compare", "Compare two images (PNG or EXR): FLIP, HDR-FLIP, PSNR, RMSE, relative MSE (docs/compare.md)");
   compare->add_option("reference", co.reference, "Reference image")->required();
   compare->add_option("test", co.test, "Image to compare with the reference")->required();
-  compare->add_option("--metric", co.metrics, "flip, hdr-flip, psnr, rmse, relmse or all (default); repeat or comma-separate")
+  compare
+      ->add_option("--metric", co.metrics,
+                   "flip, hdr-flip, psnr, rmse, relmse or all (default); repeat or comma-separate")
       ->delimiter(',')
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   compare->add_option("--mask", co.mask, "Only pixels whose rgb is nonzero in this PNG count");
   compare->add_option("--heatmap", co.heatmap,
-                         "Write the per-pixel error as a .png: the FLIP map in magma (HDR-FLIP for an HDR reference), "
-                         "or an 8-bit difference ramp when no FLIP metric is computed");
+                      "Write the per-pixel error as a .png: the FLIP map in magma (HDR-FLIP for an HDR reference), "
+                      "or an 8-bit difference ramp when no FLIP metric is computed");
   compare->add_option("--json", co.json, "Write every metric, the exposures and budgets as JSON to this file");
-  compare->add_option("--budget", co.budgets,
-                         "METRIC=VALUE; exit 9 when over it (flip, hdr-flip, rmse, relmse: at most; psnr: at least); "
-                         "repeat or comma-separate")
+  compare
+      ->add_option("--budget", co.budgets,
+                   "METRIC=VALUE; exit 9 when over it (flip, hdr-flip, rmse, relmse: at most; psnr: at least); "
+                   "repeat or comma-separate")
       ->delimiter(',')
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
@@ -213,7 +220,7 @@ CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& co) {
       ->check(CLI::PositiveNumber);
   compare->add_option("--tolerance", co.tolerance, "Per-channel tolerance in 1/255 steps (default 2)");
   compare->add_option("--min-fraction", co.minFraction,
-                         "Exit 9 unless at least this fraction of pixels is within tolerance (e.g. 0.999)");
+                      "Exit 9 unless at least this fraction of pixels is within tolerance (e.g. 0.999)");
   compare->fallthrough();
   return compare;
 }
@@ -236,7 +243,7 @@ std::optional<int> parse(CLI::App& cli, int argc, char** argv) {
   return std::nullopt;
 }
 
-} // namespace
+}  // namespace
 
 int run(int argc, char** argv) {
   CLI::App cli{"Rayster: a real-time hybrid (raster + ray-traced) renderer on Vulkan."};
@@ -274,4 +281,4 @@ int run(int argc, char** argv) {
   return int(ExitCode::BadArguments);
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -7,4 +7,4 @@ namespace rayster::app {
 
 int run(int argc, char** argv);
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -42,7 +42,8 @@ struct Input {
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
 
@@ -75,7 +76,9 @@ Result<std::vector<Metric>> parseMetrics(const std::vector<std::string>& names) 
       continue;
     }
     auto m = parseMetric(n);
-    if (!m) return makeError(ExitCode::BadArguments, "--metric '{}' is not one of flip, hdr-flip, psnr, rmse, relmse, all", n);
+    if (!m)
+      return makeError(ExitCode::BadArguments, "--metric '{}' is not one of flip, hdr-flip, psnr, rmse, relmse, all",
+                       n);
     if (std::find(metrics.begin(), metrics.end(), *m) == metrics.end()) metrics.push_back(*m);
   }
   if (names.empty()) metrics.assign(kAllMetrics.begin(), kAllMetrics.end());
@@ -130,7 +133,7 @@ ToleranceStats toleranceStats(const Image8& a, const Image8& b, int tolerance, c
 
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-} // namespace
+}  // namespace
 
 int compareCommand(const CompareOptions& o) {
   auto metrics = parseMetrics(o.metrics);
@@ -190,9 +193,10 @@ int compareCommand(const CompareOptions& o) {
     HdrFlipResult r = flipHdr(ref->linear, test->linear, o.ppd);
     const ErrorStats s = errorStats(r.map, mask);
     values[size_t(Metric::HdrFlip)] = s.mean;
-    jm["hdr-flip"] = {{"mean", s.mean},
-                      {"max", s.max},
-                      {"exposures", {{"start", r.exposures.start}, {"stop", r.exposures.stop}, {"count", r.exposures.count}}}};
+    jm["hdr-flip"] = {
+        {"mean", s.mean},
+        {"max", s.max},
+        {"exposures", {{"start", r.exposures.start}, {"stop", r.exposures.stop}, {"count", r.exposures.count}}}};
     std::printf("hdr-flip  %.6f  (mean; max %.4f; %d exposures %+.2f .. %+.2f EV)\n", s.mean, s.max, r.exposures.count,
                 r.exposures.start, r.exposures.stop);
     hdrMap = std::move(r.map);
@@ -206,7 +210,8 @@ int compareCommand(const CompareOptions& o) {
     report["rmsePsnrValues"] = linearDomain ? "linear" : "srgb";
     if (wants(Metric::Psnr)) {
       jm["psnr"] = number(values[size_t(Metric::Psnr)]);
-      std::printf("psnr      %.4f dB  (%s values, peak 1)\n", values[size_t(Metric::Psnr)], linearDomain ? "linear" : "sRGB");
+      std::printf("psnr      %.4f dB  (%s values, peak 1)\n", values[size_t(Metric::Psnr)],
+                  linearDomain ? "linear" : "sRGB");
     }
     if (wants(Metric::Rmse)) {
       jm["rmse"] = values[size_t(Metric::Rmse)];
@@ -220,7 +225,8 @@ int compareCommand(const CompareOptions& o) {
   }
   const Image8 ref8 = encodeSrgb8(ref->linear), test8 = encodeSrgb8(test->linear);
   const ToleranceStats tol = toleranceStats(ref8, test8, o.tolerance, mask);
-  report["tolerance"] = {{"steps", o.tolerance}, {"fractionWithin", tol.fractionWithin}, {"maxChannelDiff", tol.maxChannelDiff}};
+  report["tolerance"] = {
+      {"steps", o.tolerance}, {"fractionWithin", tol.fractionWithin}, {"maxChannelDiff", tol.maxChannelDiff}};
   std::printf("within %d/255: %.4f%% of pixels; max channel diff %d\n", o.tolerance, 100.0 * tol.fractionWithin,
               tol.maxChannelDiff);
 
@@ -256,4 +262,4 @@ int compareCommand(const CompareOptions& o) {
   return over ? static_cast<int>(ExitCode::TestFailed) : 0;
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

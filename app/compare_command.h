@@ -15,10 +15,10 @@ struct CompareOptions {
   std::string mask;                  // PNG; pixels with nonzero rgb count
   std::string heatmap, json;         // outputs, written atomically
   double ppd = kDefaultPixelsPerDegree;
-  int tolerance = 2;                 // per-channel 8-bit steps for the "within tolerance" fraction
-  double minFraction = -1.0;         // < 0: report only
+  int tolerance = 2;          // per-channel 8-bit steps for the "within tolerance" fraction
+  double minFraction = -1.0;  // < 0: report only
 };
 
 int compareCommand(const CompareOptions& options);
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -84,25 +84,34 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   j["render_settings"] = settingsJson(s);  // every setting of the table (render/settings_table.h)
   if (out.visibleDraws >= 0) j["draws"] = {{"visible", out.visibleDraws}, {"total", out.totalDraws}};
   j["max_depth"] = s.maxDepth;
-  if (out.rasterGBufferMs >= 0) j["auto"] = {{"raster_gbuffer_ms", out.rasterGBufferMs}, {"traced_gbuffer_ms", out.tracedGBufferMs}};
+  if (out.rasterGBufferMs >= 0)
+    j["auto"] = {{"raster_gbuffer_ms", out.rasterGBufferMs}, {"traced_gbuffer_ms", out.tracedGBufferMs}};
   j["frame_gpu_ms_median"] = out.frameMedianMs;
   const auto& st = out.scene;
-  j["scene_stats"] = {{"triangles", st.triangles},         {"spheres", st.spheres},
-                      {"blas_bytes", st.blasBytes},         {"blas_compacted_bytes", st.blasCompactedBytes},
-                      {"tlas_bytes", st.tlasBytes},         {"upload_ms", st.uploadMs},
-                      {"accel_build_ms", st.accelBuildMs},  {"device_bytes_used", st.deviceBytesUsed},
+  j["scene_stats"] = {{"triangles", st.triangles},
+                      {"spheres", st.spheres},
+                      {"blas_bytes", st.blasBytes},
+                      {"blas_compacted_bytes", st.blasCompactedBytes},
+                      {"tlas_bytes", st.tlasBytes},
+                      {"upload_ms", st.uploadMs},
+                      {"accel_build_ms", st.accelBuildMs},
+                      {"device_bytes_used", st.deviceBytesUsed},
                       {"device_bytes_reserved", st.deviceBytesReserved},
                       {"frame_bytes", st.frameBytes},
                       {"transient_bytes", st.transientBytes},
                       {"transient_unaliased_bytes", st.transientUnaliasedBytes},
                       {"history_bytes", st.historyBytes}};
   for (const auto& p : out.passes)
-    j["passes"].push_back({{"name", p.name}, {"median_ms", p.medianMs}, {"min_ms", p.minMs}, {"p95_ms", p.p95Ms},
-                           {"frames", p.samples}, {"rays", p.info.rays}});
+    j["passes"].push_back({{"name", p.name},
+                           {"median_ms", p.medianMs},
+                           {"min_ms", p.minMs},
+                           {"p95_ms", p.p95Ms},
+                           {"frames", p.samples},
+                           {"rays", p.info.rays}});
   return j;
 }
 
-} // namespace
+}  // namespace
 
 // The PNG of an AOV is for looking at: normals map to colours, stored sRGB albedo is decoded so the
 // PNG encoder does not encode it twice, and alpha is opaque (stages keep other data there, such
@@ -210,7 +219,8 @@ int renderCommand(const RenderOptions& o) {
     }
     if (o.printTimings) {
       std::printf("%-20s %10s %10s %10s\n", "pass", "median ms", "min ms", "p95 ms");
-      for (const auto& p : out->passes) std::printf("%-20s %10.3f %10.3f %10.3f\n", p.name.c_str(), p.medianMs, p.minMs, p.p95Ms);
+      for (const auto& p : out->passes)
+        std::printf("%-20s %10.3f %10.3f %10.3f\n", p.name.c_str(), p.medianMs, p.minMs, p.p95Ms);
       if (out->visibleDraws >= 0)
         std::printf("%-20s %10lld of %u (last frame, culling %s)\n", "visible draws", (long long)out->visibleDraws,
                     out->totalDraws, o.settings.culling ? "on" : "off");
@@ -261,10 +271,10 @@ int infoCommand() {
                   c.shaderGroupHandleSize, c.shaderGroupHandleAlignment, c.shaderGroupBaseAlignment,
                   c.maxRayRecursionDepth);
     std::printf("  usable by rayster: %s\n", !d.unsuitableReason.empty() ? d.unsuitableReason.c_str()
-                                           : c.rayTracing()            ? "yes"
-                                                                       : "raster mode only (no ray tracing)");
+                                             : c.rayTracing()            ? "yes"
+                                                                         : "raster mode only (no ray tracing)");
   }
   return 0;
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -31,4 +31,4 @@ Status parseMoves(const std::vector<std::string>& args, std::vector<render::Rend
 
 int infoCommand();
 
-} // namespace rayster::app
+}  // namespace rayster::app

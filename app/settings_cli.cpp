@@ -41,13 +41,21 @@ nlohmann::json settingsJson(const render::RenderSettings& settings) {
   for (const render::Setting& s : render::settingsTable()) {
     const std::string v = s.get(settings);
     switch (s.kind) {
-      case render::SettingKind::Switch: j[s.name] = v == "on"; break;
-      case render::SettingKind::Integer: j[s.name] = std::stoll(v); break;
-      case render::SettingKind::Real: j[s.name] = std::stod(v); break;
-      case render::SettingKind::Choice: j[s.name] = v; break;
+      case render::SettingKind::Switch:
+        j[s.name] = v == "on";
+        break;
+      case render::SettingKind::Integer:
+        j[s.name] = std::stoll(v);
+        break;
+      case render::SettingKind::Real:
+        j[s.name] = std::stod(v);
+        break;
+      case render::SettingKind::Choice:
+        j[s.name] = v;
+        break;
     }
   }
   return j;
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -29,4 +29,4 @@ Status applySettings(const SettingValues& values, render::RenderSettings& settin
 // numbers, choices as their names.
 nlohmann::json settingsJson(const render::RenderSettings& settings);
 
-} // namespace rayster::app
+}  // namespace rayster::app

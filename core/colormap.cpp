@@ -29,7 +29,7 @@ constexpr std::array<std::array<double, 3>, 17> kMagmaControl = {{
 
 int controlIndex(size_t i) { return i + 1 == kMagmaControl.size() ? 255 : static_cast<int>(i) * 16; }
 
-} // namespace
+}  // namespace
 
 const std::array<Rgb8, 256>& magmaTable() {
   static const std::array<Rgb8, 256> table = [] {
@@ -49,4 +49,4 @@ const std::array<Rgb8, 256>& magmaTable() {
   return table;
 }
 
-} // namespace rayster
+}  // namespace rayster

@@ -14,4 +14,4 @@ using Rgb8 = std::array<uint8_t, 3>;
 // it deviates from the full table by at most about 2/255 per channel.
 const std::array<Rgb8, 256>& magmaTable();
 
-} // namespace rayster
+}  // namespace rayster

@@ -16,20 +16,20 @@ namespace rayster {
 // Process exit codes, documented in README.md and `rayster --help`. Never renumber.
 enum class ExitCode : int {
   Ok = 0,
-  Failure = 1,           // anything not listed below
-  BadArguments = 2,      // command line could not be parsed or is inconsistent
-  BadInput = 3,          // a scene or image file is missing, unreadable or invalid
-  NoDevice = 4,          // no Vulkan driver or no usable device
-  MissingCapability = 5, // the device lacks a required feature (e.g. ray tracing)
-  DeviceLost = 6,        // VK_ERROR_DEVICE_LOST during rendering
-  OutOfMemory = 7,       // host or device memory exhausted
-  OutputFailed = 8,      // the output file could not be written
-  TestFailed = 9,        // a comparison exceeded its budget (rayster compare)
+  Failure = 1,            // anything not listed below
+  BadArguments = 2,       // command line could not be parsed or is inconsistent
+  BadInput = 3,           // a scene or image file is missing, unreadable or invalid
+  NoDevice = 4,           // no Vulkan driver or no usable device
+  MissingCapability = 5,  // the device lacks a required feature (e.g. ray tracing)
+  DeviceLost = 6,         // VK_ERROR_DEVICE_LOST during rendering
+  OutOfMemory = 7,        // host or device memory exhausted
+  OutputFailed = 8,       // the output file could not be written
+  TestFailed = 9,         // a comparison exceeded its budget (rayster compare)
 };
 
 struct Error {
   ExitCode code = ExitCode::Failure;
-  std::string message; // one line, says what and why, e.g. "scene.gltf: accessor 3 out of bounds"
+  std::string message;  // one line, says what and why, e.g. "scene.gltf: accessor 3 out of bounds"
 };
 
 template <class... Args>
@@ -67,16 +67,16 @@ inline Status okStatus() { return Ok{}; }
   std::abort();
 }
 
-} // namespace rayster
+}  // namespace rayster
 
-#define RAYSTER_ASSERT(cond, msg)                                                         \
-  do {                                                                                    \
+#define RAYSTER_ASSERT(cond, msg)                                                           \
+  do {                                                                                      \
     if (!(cond)) ::rayster::fatal("assertion failed: " #cond ": " msg, __FILE__, __LINE__); \
   } while (0)
 
 // Propagates an Error from an expression returning Result<T>.
-#define RAYSTER_TRY(expr)                                     \
-  do {                                                        \
-    auto&& rayster_try_ = (expr);                             \
-    if (!rayster_try_.ok()) return rayster_try_.error();      \
+#define RAYSTER_TRY(expr)                                \
+  do {                                                   \
+    auto&& rayster_try_ = (expr);                        \
+    if (!rayster_try_.ok()) return rayster_try_.error(); \
   } while (0)

@@ -17,12 +17,12 @@ using flip::Vec3;
 using Plane = std::vector<float>;
 
 // Every tunable of the papers, in one place.
-constexpr double kColorExponent = 0.7;      // qc: HyAB differences are compressed by this power
-constexpr double kFeatureExponent = 0.5;    // qf: and feature differences by this one
-constexpr double kRedistributeCut = 0.4;    // pc: fraction of cmax ...
-constexpr double kRedistributeTarget = 0.95;// pt: ... mapped to this much of the error range
-constexpr double kFeatureWidthDegrees = 0.082; // w: feature size; the detectors' sigma is 0.5 w ppd
-constexpr double kHdrTargetLuminance = 0.85;   // start/stop exposures tonemap max/median to this
+constexpr double kColorExponent = 0.7;          // qc: HyAB differences are compressed by this power
+constexpr double kFeatureExponent = 0.5;        // qf: and feature differences by this one
+constexpr double kRedistributeCut = 0.4;        // pc: fraction of cmax ...
+constexpr double kRedistributeTarget = 0.95;    // pt: ... mapped to this much of the error range
+constexpr double kFeatureWidthDegrees = 0.082;  // w: feature size; the detectors' sigma is 0.5 w ppd
+constexpr double kHdrTargetLuminance = 0.85;    // start/stop exposures tonemap max/median to this
 
 // Contrast sensitivity functions, a1 exp(-b1 f^2) + a2 exp(-b2 f^2) in cycles per degree, per YyCxCz
 // channel; their spatial form is a1 sqrt(pi/b1) exp(-pi^2 x^2 / b1) + (same for a2, b2), x in degrees.
@@ -30,9 +30,9 @@ struct Csf {
   double a1, b1, a2, b2;
 };
 constexpr std::array<Csf, 3> kCsf = {{
-    {1.0, 0.0047, 0.0, 1e-5},    // achromatic
-    {1.0, 0.0053, 0.0, 1e-5},    // red-green
-    {34.1, 0.04, 13.5, 0.025},   // blue-yellow
+    {1.0, 0.0047, 0.0, 1e-5},   // achromatic
+    {1.0, 0.0053, 0.0, 1e-5},   // red-green
+    {34.1, 0.04, 13.5, 0.025},  // blue-yellow
 }};
 
 // One filter radius for all channels, three standard deviations of the widest Gaussian (b = 0.04).
@@ -154,7 +154,7 @@ Features detectFeatures(const Plane& yy, int w, int h, const flip::FeatureKernel
   return f;
 }
 
-} // namespace
+}  // namespace
 
 double pixelsPerDegree(double distanceMeters, double widthMeters, double resolutionX) {
   return distanceMeters * (resolutionX / widthMeters) * std::numbers::pi / 180.0;
@@ -198,9 +198,7 @@ Vec3 xyzToLab(const Vec3& xyz) {
 
 Vec3 huntAdjust(const Vec3& lab) { return {lab[0], 0.01 * lab[0] * lab[1], 0.01 * lab[0] * lab[2]}; }
 
-double hyab(const Vec3& a, const Vec3& b) {
-  return std::abs(a[0] - b[0]) + std::hypot(a[1] - b[1], a[2] - b[2]);
-}
+double hyab(const Vec3& a, const Vec3& b) { return std::abs(a[0] - b[0]) + std::hypot(a[1] - b[1], a[2] - b[2]); }
 
 double maxColorDifference() {
   static const double cmax = [] {
@@ -266,7 +264,7 @@ double tonemapInverse(double y) {
   return std::max(x1, x2);
 }
 
-} // namespace flip
+}  // namespace flip
 
 ErrorMap flipLdr(const ImageF& reference, const ImageF& test, double ppd) {
   RAYSTER_ASSERT(reference.width == test.width && reference.height == test.height, "FLIP needs images of equal size");
@@ -284,7 +282,8 @@ ErrorMap flipLdr(const ImageF& reference, const ImageF& test, double ppd) {
   const double cmax = flip::maxColorDifference();
 
   for (size_t p = 0; p < map.values.size(); ++p) {
-    const double hyab = flip::hyab({refLab[0][p], refLab[1][p], refLab[2][p]}, {testLab[0][p], testLab[1][p], testLab[2][p]});
+    const double hyab =
+        flip::hyab({refLab[0][p], refLab[1][p], refLab[2][p]}, {testLab[0][p], testLab[1][p], testLab[2][p]});
     const double color = flip::redistributeColorError(std::pow(hyab, kColorExponent), cmax);
     const double edge = std::abs(refFeatures.edge[p] - testFeatures.edge[p]);
     const double point = std::abs(refFeatures.point[p] - testFeatures.point[p]);
@@ -347,9 +346,9 @@ HdrFlipResult flipHdr(const ImageF& reference, const ImageF& test, double ppd, c
 }
 
 ErrorStats errorStats(const ErrorMap& map, const PixelMask& mask) {
-  RAYSTER_ASSERT(mask.empty() || (mask.width == map.width && mask.height == map.height &&
-                                  mask.inside.size() == map.values.size()),
-                 "the mask must match the map's size");
+  RAYSTER_ASSERT(
+      mask.empty() || (mask.width == map.width && mask.height == map.height && mask.inside.size() == map.values.size()),
+      "the mask must match the map's size");
   ErrorStats s;
   double sum = 0;
   for (size_t p = 0; p < map.values.size(); ++p) {
@@ -374,4 +373,4 @@ Image8 flipHeatmap(const ErrorMap& map) {
   return out;
 }
 
-} // namespace rayster
+}  // namespace rayster

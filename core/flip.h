@@ -101,6 +101,6 @@ FeatureKernels featureKernels(double ppd);
 // [0, 1) (the x >= 0 that maps to y).
 double tonemap(double x);
 double tonemapInverse(double y);
-} // namespace flip
+}  // namespace flip
 
-} // namespace rayster
+}  // namespace rayster

@@ -19,10 +19,10 @@ inline uint16_t floatToHalf(float value) {
     return static_cast<uint16_t>(sign | 0x7c00u);
   }
   const int halfExponent = static_cast<int>(exponent) - 127 + 15;
-  if (halfExponent >= 31) return static_cast<uint16_t>(sign | 0x7c00u); // overflow -> inf
+  if (halfExponent >= 31) return static_cast<uint16_t>(sign | 0x7c00u);  // overflow -> inf
   if (halfExponent <= 0) {
     // Denormal half (or zero): shift the mantissa with its implicit 1 into place.
-    if (halfExponent < -10) return sign; // below half the smallest denormal -> signed zero
+    if (halfExponent < -10) return sign;  // below half the smallest denormal -> signed zero
     mantissa |= 0x800000u;
     const int shift = 14 - halfExponent;
     uint32_t halfMantissa = mantissa >> shift;
@@ -34,7 +34,7 @@ inline uint16_t floatToHalf(float value) {
   }
   uint32_t half = (static_cast<uint32_t>(halfExponent) << 10) | (mantissa >> 13);
   const uint32_t remainder = mantissa & 0x1fffu;
-  if (remainder > 0x1000u || (remainder == 0x1000u && (half & 1u))) ++half; // may carry to inf: correct
+  if (remainder > 0x1000u || (remainder == 0x1000u && (half & 1u))) ++half;  // may carry to inf: correct
   return static_cast<uint16_t>(sign | half);
 }
 
@@ -63,4 +63,4 @@ inline float halfToFloat(uint16_t half) {
   return value;
 }
 
-} // namespace rayster
+}  // namespace rayster

@@ -11,7 +11,7 @@ size_t offsetOf(int width, int height, int x, int y) {
   RAYSTER_ASSERT(x >= 0 && y >= 0 && x < width && y < height, "pixel out of range");
   return (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 4;
 }
-} // namespace
+}  // namespace
 
 float* ImageF::pixel(int x, int y) { return rgba.data() + offsetOf(width, height, x, y); }
 const float* ImageF::pixel(int x, int y) const { return rgba.data() + offsetOf(width, height, x, y); }
@@ -37,4 +37,4 @@ Image8 Image8::make(int w, int h) {
   return image;
 }
 
-} // namespace rayster
+}  // namespace rayster

@@ -14,7 +14,7 @@ struct ImageF {
   float* pixel(int x, int y);
   const float* pixel(int x, int y) const;
   bool empty() const { return width <= 0 || height <= 0; }
-  static ImageF make(int w, int h); // zero-filled
+  static ImageF make(int w, int h);  // zero-filled
 };
 
 // Display-referred 8-bit image (sRGB-encoded when it came from writeImage/readPng), 4 bytes per pixel.
@@ -25,7 +25,7 @@ struct Image8 {
   uint8_t* pixel(int x, int y);
   const uint8_t* pixel(int x, int y) const;
   bool empty() const { return width <= 0 || height <= 0; }
-  static Image8 make(int w, int h); // zero-filled
+  static Image8 make(int w, int h);  // zero-filled
 };
 
-} // namespace rayster
+}  // namespace rayster

@@ -116,7 +116,7 @@ const std::array<float, 256>& srgbDecodeTable() {
 }
 
 uint8_t quantize(float value) {
-  if (!(value > 0.0f)) return 0; // also catches NaN
+  if (!(value > 0.0f)) return 0;  // also catches NaN
   if (value >= 1.0f) return 255;
   return static_cast<uint8_t>(std::lround(value * 255.0f));
 }
@@ -167,15 +167,11 @@ Status writeHdr(const fs::path& path, const ImageF& image) {
   });
 }
 
-} // namespace
+}  // namespace
 
-float srgbToLinear(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
-float linearToSrgb(float l) {
-  return l <= 0.0031308f ? l * 12.92f : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
-}
+float linearToSrgb(float l) { return l <= 0.0031308f ? l * 12.92f : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f; }
 
 Status writePng(const fs::path& path, const Image8& image) {
   if (image.empty()) return writeError(path, "image is empty");
@@ -238,7 +234,7 @@ Result<ImageF> readExr(const fs::path& path) {
   }
   ImageF image = ImageF::make(w, h);
   std::copy(data, data + image.rgba.size(), image.rgba.begin());
-  std::free(data); // tinyexr allocates with malloc
+  std::free(data);  // tinyexr allocates with malloc
   return image;
 }
 
@@ -279,8 +275,8 @@ Result<ImageF> readImageLinear(const fs::path& path) {
   }
   if (ext == ".exr") return readExr(path);
   if (ext == ".hdr") return readHdr(path);
-  return makeError(ExitCode::BadArguments, "{}: unknown image format '{}' (expected .png, .exr or .hdr)",
-                   path.string(), ext);
+  return makeError(ExitCode::BadArguments, "{}: unknown image format '{}' (expected .png, .exr or .hdr)", path.string(),
+                   ext);
 }
 
 Status writeImage(const fs::path& path, const ImageF& linear, ExrPixels exrPixels) {
@@ -291,8 +287,8 @@ Status writeImage(const fs::path& path, const ImageF& linear, ExrPixels exrPixel
     if (linear.empty()) return writeError(path, "image is empty");
     return writeHdr(path, linear);
   }
-  return makeError(ExitCode::BadArguments, "{}: unknown image format '{}' (expected .png, .exr or .hdr)",
-                   path.string(), ext);
+  return makeError(ExitCode::BadArguments, "{}: unknown image format '{}' (expected .png, .exr or .hdr)", path.string(),
+                   ext);
 }
 
-} // namespace rayster
+}  // namespace rayster

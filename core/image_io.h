@@ -43,4 +43,4 @@ Status writeImage(const std::filesystem::path& path, const ImageF& linear, ExrPi
 Image8 encodeSrgb8(const ImageF& linear);
 ImageF decodeSrgb8(const Image8& encoded);
 
-} // namespace rayster
+}  // namespace rayster

@@ -7,7 +7,7 @@
 namespace rayster::log {
 namespace {
 std::atomic<Level> gLevel{Level::Info};
-} // namespace
+}  // namespace
 
 void setLevel(Level level) { gLevel.store(level, std::memory_order_relaxed); }
 Level level() { return gLevel.load(std::memory_order_relaxed); }
@@ -23,6 +23,6 @@ void write(Level level, std::string_view message) {
   std::fwrite(line.data(), 1, line.size(), stderr);
   std::fflush(stderr);
 }
-} // namespace detail
+}  // namespace detail
 
-} // namespace rayster::log
+}  // namespace rayster::log

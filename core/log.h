@@ -16,7 +16,7 @@ Level level();
 namespace detail {
 // Writes "rayster: <prefix><message>\n" as one write so concurrent lines do not interleave.
 void write(Level level, std::string_view message);
-} // namespace detail
+}  // namespace detail
 
 template <class... A>
 void debug(fmt::format_string<A...> f, A&&... args) {
@@ -38,4 +38,4 @@ void error(fmt::format_string<A...> f, A&&... args) {
   if (level() <= Level::Error) detail::write(Level::Error, fmt::format(f, std::forward<A>(args)...));
 }
 
-} // namespace rayster::log
+}  // namespace rayster::log

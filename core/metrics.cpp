@@ -12,8 +12,7 @@
 namespace rayster {
 namespace {
 
-std::optional<std::string> checkSize(int width, int height, size_t values, int expectWidth,
-                                     int expectHeight) {
+std::optional<std::string> checkSize(int width, int height, size_t values, int expectWidth, int expectHeight) {
   if (width <= 0 || height <= 0 || values == 0) return fmt::format("image is empty ({}x{})", width, height);
   if (values != static_cast<size_t>(width) * static_cast<size_t>(height) * 4)
     return fmt::format("image {}x{} has {} values, expected {}", width, height, values,
@@ -48,17 +47,15 @@ void heatColor(int diff, uint8_t* out) {
   out[3] = 255;
 }
 
-} // namespace
+}  // namespace
 
 std::optional<std::string> rejectEmpty(const Image8& image, int expectWidth, int expectHeight) {
-  if (auto reason = checkSize(image.width, image.height, image.rgba.size(), expectWidth, expectHeight))
-    return reason;
+  if (auto reason = checkSize(image.width, image.height, image.rgba.size(), expectWidth, expectHeight)) return reason;
   return rejectBlackOrUniform(image.rgba);
 }
 
 std::optional<std::string> rejectEmpty(const ImageF& image, int expectWidth, int expectHeight) {
-  if (auto reason = checkSize(image.width, image.height, image.rgba.size(), expectWidth, expectHeight))
-    return reason;
+  if (auto reason = checkSize(image.width, image.height, image.rgba.size(), expectWidth, expectHeight)) return reason;
   for (size_t i = 0; i < image.rgba.size(); ++i) {
     if (!std::isfinite(image.rgba[i])) {
       const size_t p = i / 4;
@@ -121,20 +118,21 @@ template <class Term>
 double maskedChannelMean(const ImageF& a, const ImageF& b, const PixelMask& mask, Term&& term) {
   RAYSTER_ASSERT(a.width == b.width && a.height == b.height, "metrics need images of equal size");
   RAYSTER_ASSERT(a.rgba.size() == b.rgba.size(), "metrics need images of equal size");
-  RAYSTER_ASSERT(mask.empty() || (mask.width == a.width && mask.height == a.height &&
-                                  mask.inside.size() * 4 == a.rgba.size()),
-                 "the mask must match the images' size");
+  RAYSTER_ASSERT(
+      mask.empty() || (mask.width == a.width && mask.height == a.height && mask.inside.size() * 4 == a.rgba.size()),
+      "the mask must match the images' size");
   const size_t pixels = a.rgba.size() / 4;
   double sum = 0;
   size_t counted = 0;
   for (size_t p = 0; p < pixels; ++p) {
     if (!mask.covers(p)) continue;
     ++counted;
-    for (size_t c = 0; c < 3; ++c) sum += term(static_cast<double>(a.rgba[p * 4 + c]), static_cast<double>(b.rgba[p * 4 + c]));
+    for (size_t c = 0; c < 3; ++c)
+      sum += term(static_cast<double>(a.rgba[p * 4 + c]), static_cast<double>(b.rgba[p * 4 + c]));
   }
   return counted == 0 ? 0.0 : sum / (static_cast<double>(counted) * 3.0);
 }
-} // namespace
+}  // namespace
 
 double rmse(const ImageF& a, const ImageF& b, const PixelMask& mask) {
   return std::sqrt(maskedChannelMean(a, b, mask, [](double x, double y) { return (x - y) * (x - y); }));
@@ -149,4 +147,4 @@ double relMse(const ImageF& ref, const ImageF& test, double eps, const PixelMask
   return maskedChannelMean(ref, test, mask, [eps](double r, double t) { return (t - r) * (t - r) / (r * r + eps); });
 }
 
-} // namespace rayster
+}  // namespace rayster

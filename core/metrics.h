@@ -36,14 +36,14 @@ struct PixelMask {
 
   bool empty() const { return inside.empty(); }
   bool covers(size_t pixel) const { return inside.empty() || inside[pixel] != 0; }
-  size_t count() const; // pixels that count (0 for an empty mask: use the image's size)
+  size_t count() const;  // pixels that count (0 for an empty mask: use the image's size)
 };
 // A pixel counts when any of its rgb values is nonzero (alpha is ignored: masks are painted).
 PixelMask maskFromImage(const Image8& image);
 
 // These take the mean over the pixels `mask` covers (all when empty); a non-empty mask must match
 // the images' size. With no pixel covered they return 0.
-double rmse(const ImageF& a, const ImageF& b, const PixelMask& mask = {}); // rgb only
+double rmse(const ImageF& a, const ImageF& b, const PixelMask& mask = {});  // rgb only
 // Peak signal-to-noise ratio for a peak of 1: -20 log10(rmse), dB; +inf when identical.
 double psnr(const ImageF& a, const ImageF& b, const PixelMask& mask = {});
 // Relative MSE: mean over pixels and rgb of (t-r)^2 / (r^2 + eps). Scale-independent, so one
@@ -51,4 +51,4 @@ double psnr(const ImageF& a, const ImageF& b, const PixelMask& mask = {});
 inline constexpr double kRelMseEpsilon = 1e-2;
 double relMse(const ImageF& ref, const ImageF& test, double eps = kRelMseEpsilon, const PixelMask& mask = {});
 
-} // namespace rayster
+}  // namespace rayster

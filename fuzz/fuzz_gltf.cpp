@@ -17,15 +17,16 @@ namespace {
 
 const std::filesystem::path& workDir() {
   static const std::filesystem::path dir = [] {
-    std::filesystem::path d = std::filesystem::temp_directory_path() / ("rayster-fuzz-gltf-" + std::to_string(getpid()));
+    std::filesystem::path d =
+        std::filesystem::temp_directory_path() / ("rayster-fuzz-gltf-" + std::to_string(getpid()));
     std::filesystem::create_directories(d);
-    rayster::log::setLevel(rayster::log::Level::Error); // refusals warn; thousands of lines help no one
+    rayster::log::setLevel(rayster::log::Level::Error);  // refusals warn; thousands of lines help no one
     return d;
   }();
   return dir;
 }
 
-} // namespace
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const bool glb = size >= 4 && std::memcmp(data, "glTF", 4) == 0;

@@ -18,7 +18,7 @@ bool sharesMemory(const AliasPlan& plan, std::span<const AliasItem> items, size_
   return pa.heap == pb.heap && rangesOverlap(pa.offset, items[a].size, pb.offset, items[b].size);
 }
 
-} // namespace
+}  // namespace
 
 VkDeviceSize AliasPlan::totalBytes() const {
   VkDeviceSize total = 0;
@@ -82,9 +82,8 @@ std::vector<std::vector<uint32_t>> aliasedBefore(const AliasPlan& plan, std::spa
   std::vector<std::vector<uint32_t>> before(items.size());
   for (size_t i = 0; i < items.size(); ++i)
     for (size_t j = 0; j < items.size(); ++j)
-      if (j != i && items[j].last < items[i].first && sharesMemory(plan, items, i, j))
-        before[i].push_back(uint32_t(j));
+      if (j != i && items[j].last < items[i].first && sharesMemory(plan, items, i, j)) before[i].push_back(uint32_t(j));
   return before;
 }
 
-} // namespace rayster::graph
+}  // namespace rayster::graph

@@ -43,4 +43,4 @@ bool planFits(const AliasPlan& plan, std::span<const AliasItem> items);
 // what its first use discards, and what its first barrier must wait for).
 std::vector<std::vector<uint32_t>> aliasedBefore(const AliasPlan& plan, std::span<const AliasItem> items);
 
-} // namespace rayster::graph
+}  // namespace rayster::graph

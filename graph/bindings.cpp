@@ -25,13 +25,16 @@ Use storageUse(const rhi::ShaderBinding& b, VkPipelineBindPoint point) {
 
 Use sampledUse(VkPipelineBindPoint point) {
   switch (point) {
-    case VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR: return Use::SampledRayTracing;
-    case VK_PIPELINE_BIND_POINT_GRAPHICS: return Use::SampledFragment;
-    default: return Use::SampledCompute;
+    case VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR:
+      return Use::SampledRayTracing;
+    case VK_PIPELINE_BIND_POINT_GRAPHICS:
+      return Use::SampledFragment;
+    default:
+      return Use::SampledCompute;
   }
 }
 
-} // namespace
+}  // namespace
 
 PassBuilder& PassBuilder::pipeline(const rhi::Pipeline& pipeline) {
   RenderGraph::Pass& pass = graph_.passes_[pass_];
@@ -167,14 +170,18 @@ void RenderGraph::bindPipeline(VkCommandBuffer cmd, const Pass& pass) const {
       case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
         writer.sampledImage(d.binding, images_[d.image].image->view(), d.sampler);
         break;
-      case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE: writer.storageImage(d.binding, images_[d.image].image->view()); break;
+      case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+        writer.storageImage(d.binding, images_[d.image].image->view());
+        break;
       case VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR:
         writer.accelerationStructure(d.binding, buffers_[d.buffer].accel);
         break;
       case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
         writer.uniformBuffer(d.binding, d.constant ? *d.constant : *buffers_[d.buffer].buffer);
         break;
-      default: writer.storageBuffer(d.binding, d.constant ? *d.constant : *buffers_[d.buffer].buffer); break;
+      default:
+        writer.storageBuffer(d.binding, d.constant ? *d.constant : *buffers_[d.buffer].buffer);
+        break;
     }
   }
   if (!pass.descriptors.empty()) writer.push(cmd, pipe);
@@ -198,4 +205,4 @@ void PassContext::bindWithGlobals(const rhi::Pipeline& pipeline) const {
 
 void PassContext::pushBytes(const void* data, uint32_t bytes) const { pipeline().pushConstants(cmd, data, bytes); }
 
-} // namespace rayster::graph
+}  // namespace rayster::graph

@@ -114,7 +114,6 @@ void RenderGraph::addPass(std::string name, const std::function<void(PassBuilder
   checkBindings(passes_.back());
 }
 
-
 std::vector<PlannedPass> RenderGraph::compile(const std::vector<std::vector<uint32_t>>* aliasedBefore) const {
   std::vector<ResourceState> imageStates, bufferStates;
   return plan(imageStates, bufferStates, aliasedBefore);
@@ -202,8 +201,8 @@ void RenderGraph::execute(VkCommandBuffer cmd, rhi::TimestampPool* timers) {
   const std::vector<uint32_t> order = livePasses();
   std::vector<TransientRequest> requests;
   for (const TransientLifetime& t : lifetimes)
-    requests.push_back({images_[t.image].name, images_[t.image].desc, t.first, t.last,
-                        passes_[order[t.first]].name, passes_[order[t.last]].name});
+    requests.push_back({images_[t.image].name, images_[t.image].desc, t.first, t.last, passes_[order[t.first]].name,
+                        passes_[order[t.last]].name});
   std::vector<std::vector<uint32_t>> before;
   const std::vector<const rhi::Image*> transients = pool_->acquire(*ctx_, requests, before);
   std::vector<std::vector<uint32_t>> aliasedBefore(images_.size());
@@ -278,4 +277,4 @@ std::vector<RenderGraph::PassTiming> RenderGraph::readTimings(rhi::TimestampPool
   return out;
 }
 
-} // namespace rayster::graph
+}  // namespace rayster::graph

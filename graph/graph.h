@@ -24,7 +24,7 @@ class Context;
 class Pipeline;
 class TimestampPool;
 struct ShaderBinding;
-} // namespace rayster::rhi
+}  // namespace rayster::rhi
 
 namespace rayster::graph {
 
@@ -264,4 +264,4 @@ class RenderGraph {
   std::vector<uint32_t> timedPasses_;  // execute(): the pass of each timestamp region, in order
 };
 
-} // namespace rayster::graph
+}  // namespace rayster::graph

@@ -48,4 +48,4 @@ HistoryStore::Entry& HistoryStore::acquire(rhi::Context& ctx, const std::string&
   return e;
 }
 
-} // namespace rayster::graph
+}  // namespace rayster::graph

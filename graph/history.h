@@ -38,8 +38,8 @@ class HistoryStore {
   struct Entry {
     rhi::Image images[2];
     ResourceState states[2];
-    uint32_t frames = 0;   // consecutive frames written, up to the last endFrame()
-    bool used = false;     // asked for by the current frame
+    uint32_t frames = 0;  // consecutive frames written, up to the last endFrame()
+    bool used = false;    // asked for by the current frame
   };
   // The pair for `name` this frame, (re)created for `desc`.
   Entry& acquire(rhi::Context& ctx, const std::string& name, const rhi::ImageDesc& desc);
@@ -47,4 +47,4 @@ class HistoryStore {
   uint32_t frame_ = 0;
 };
 
-} // namespace rayster::graph
+}  // namespace rayster::graph

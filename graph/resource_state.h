@@ -24,20 +24,20 @@ enum class Use : uint8_t {
   StorageWriteRayTracing,
   StorageReadWriteRayTracing,
   UniformRead,
-  VertexShaderRead, // buffer read through a device address in the vertex shader
+  VertexShaderRead,  // buffer read through a device address in the vertex shader
   IndexRead,
   TransferSrc,
   TransferDst,
-  AccelStructBuildWrite, // the buffer backing an acceleration structure being built or refitted
-  AccelStructRead,       // ray tracing shaders tracing against a TLAS
-  HostRead,              // CPU readback after a copy
-  IndirectRead,          // draw commands and draw counts of vkCmdDraw*Indirect*
+  AccelStructBuildWrite,  // the buffer backing an acceleration structure being built or refitted
+  AccelStructRead,        // ray tracing shaders tracing against a TLAS
+  HostRead,               // CPU readback after a copy
+  IndirectRead,           // draw commands and draw counts of vkCmdDraw*Indirect*
 };
 
 struct AccessInfo {
   VkPipelineStageFlags2 stages;
   VkAccessFlags2 access;
-  VkImageLayout layout; // UNDEFINED for buffers
+  VkImageLayout layout;  // UNDEFINED for buffers
   bool writes;
   bool reads;
 };
@@ -53,11 +53,11 @@ struct ResourceState {
   // completes before the stages of the barrier that performed it, with no access of its own.
   VkPipelineStageFlags2 writeStages = 0;
   VkAccessFlags2 writeAccess = 0;
-  VkPipelineStageFlags2 readStages = 0; // stages that read since the last write (for write-after-read)
+  VkPipelineStageFlags2 readStages = 0;  // stages that read since the last write (for write-after-read)
   // Where the last write has already been made visible, kept as a product stages x access.
   VkPipelineStageFlags2 visibleStages = 0;
   VkAccessFlags2 visibleAccess = 0;
-  bool contentsValid = false; // false: the next layout transition may start from UNDEFINED (discard)
+  bool contentsValid = false;  // false: the next layout transition may start from UNDEFINED (discard)
 };
 
 struct Barrier {
@@ -65,11 +65,11 @@ struct Barrier {
   VkPipelineStageFlags2 dstStages;
   VkAccessFlags2 srcAccess;
   VkAccessFlags2 dstAccess;
-  VkImageLayout oldLayout; // equal to newLayout (UNDEFINED) for buffers
+  VkImageLayout oldLayout;  // equal to newLayout (UNDEFINED) for buffers
   VkImageLayout newLayout;
 };
 
 // Returns the barrier needed before `use`, if any, and updates `state` as if the access happened.
 std::optional<Barrier> transition(ResourceState& state, Use use, bool isImage);
 
-} // namespace rayster::graph
+}  // namespace rayster::graph

@@ -13,39 +13,56 @@ namespace rayster::graph {
 
 const char* formatName(VkFormat f) {
   switch (f) {
-    case VK_FORMAT_R8G8B8A8_UNORM: return "RGBA8";
-    case VK_FORMAT_R8G8B8A8_SRGB: return "RGBA8_SRGB";
-    case VK_FORMAT_B8G8R8A8_UNORM: return "BGRA8";
-    case VK_FORMAT_R16_SFLOAT: return "R16F";
-    case VK_FORMAT_R16G16_SFLOAT: return "RG16F";
-    case VK_FORMAT_R16G16B16A16_SFLOAT: return "RGBA16F";
-    case VK_FORMAT_R16G16B16A16_SNORM: return "RGBA16_SNORM";
-    case VK_FORMAT_R32_SFLOAT: return "R32F";
-    case VK_FORMAT_R32_UINT: return "R32UI";
-    case VK_FORMAT_R32G32_SFLOAT: return "RG32F";
-    case VK_FORMAT_R32G32B32A32_SFLOAT: return "RGBA32F";
-    case VK_FORMAT_R32G32B32A32_UINT: return "RGBA32UI";
-    case VK_FORMAT_D32_SFLOAT: return "D32F";
-    case VK_FORMAT_D16_UNORM: return "D16";
-    case VK_FORMAT_D24_UNORM_S8_UINT: return "D24S8";
-    case VK_FORMAT_D32_SFLOAT_S8_UINT: return "D32FS8";
-    default: return "other";
+    case VK_FORMAT_R8G8B8A8_UNORM:
+      return "RGBA8";
+    case VK_FORMAT_R8G8B8A8_SRGB:
+      return "RGBA8_SRGB";
+    case VK_FORMAT_B8G8R8A8_UNORM:
+      return "BGRA8";
+    case VK_FORMAT_R16_SFLOAT:
+      return "R16F";
+    case VK_FORMAT_R16G16_SFLOAT:
+      return "RG16F";
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+      return "RGBA16F";
+    case VK_FORMAT_R16G16B16A16_SNORM:
+      return "RGBA16_SNORM";
+    case VK_FORMAT_R32_SFLOAT:
+      return "R32F";
+    case VK_FORMAT_R32_UINT:
+      return "R32UI";
+    case VK_FORMAT_R32G32_SFLOAT:
+      return "RG32F";
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      return "RGBA32F";
+    case VK_FORMAT_R32G32B32A32_UINT:
+      return "RGBA32UI";
+    case VK_FORMAT_D32_SFLOAT:
+      return "D32F";
+    case VK_FORMAT_D16_UNORM:
+      return "D16";
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+      return "D24S8";
+    case VK_FORMAT_D32_SFLOAT_S8_UINT:
+      return "D32FS8";
+    default:
+      return "other";
   }
 }
 
 std::string formatMemoryReport(const FrameMemoryReport& r) {
   auto mib = [](uint64_t b) { return double(b) / (1 << 20); };
-  std::string s = fmt::format("frame resources: {:.1f} MiB = transients {:.1f} MiB (aliased; {:.1f} MiB unaliased) + "
-                              "imported {:.1f} MiB\n",
-                              mib(r.frameBytes()), mib(r.transientBytes), mib(r.transientUnaliasedBytes),
-                              mib(r.importedBytes));
+  std::string s = fmt::format(
+      "frame resources: {:.1f} MiB = transients {:.1f} MiB (aliased; {:.1f} MiB unaliased) + "
+      "imported {:.1f} MiB\n",
+      mib(r.frameBytes()), mib(r.transientBytes), mib(r.transientUnaliasedBytes), mib(r.importedBytes));
   s += fmt::format("  {:<28} {:<13} {:>11} {:>9}  {}\n", "image", "format", "size", "MiB", "placement / lifetime");
   for (const FrameMemoryEntry& e : r.entries) {
     const std::string size = e.desc.layers > 1 ? fmt::format("{}x{}x{}", e.desc.width, e.desc.height, e.desc.layers)
                                                : fmt::format("{}x{}", e.desc.width, e.desc.height);
-    const std::string where = e.imported ? std::string("imported (history/output)")
-                                         : fmt::format("heap {} +{:.1f} MiB, {} .. {}", e.heap, mib(e.offset),
-                                                       e.firstPass, e.lastPass);
+    const std::string where =
+        e.imported ? std::string("imported (history/output)")
+                   : fmt::format("heap {} +{:.1f} MiB, {} .. {}", e.heap, mib(e.offset), e.firstPass, e.lastPass);
     s += fmt::format("  {:<28} {:<13} {:>11} {:>9.2f}  {}\n", e.name, formatName(e.desc.format), size, mib(e.bytes),
                      where);
   }
@@ -80,8 +97,7 @@ TransientPool& TransientPool::operator=(TransientPool&& o) noexcept {
 
 void TransientPool::release() {
   images_.clear();  // retired before the heaps below them (Context::retire runs in order)
-  for (const rhi::Allocation& a : heaps_)
-    ctx_->retire([ctx = ctx_, a] { ctx->memory().free(a); });
+  for (const rhi::Allocation& a : heaps_) ctx_->retire([ctx = ctx_, a] { ctx->memory().free(a); });
   heaps_.clear();
   plan_ = {};
   items_.clear();
@@ -128,7 +144,8 @@ std::vector<const rhi::Image*> TransientPool::acquire(rhi::Context& ctx, const s
   items_ = std::move(items);
   requests_ = requests;
   before = aliasedBefore(plan_, items_);
-  if (!reuse && log::level() <= log::Level::Debug) log::debug("transient images placed\n{}", formatMemoryReport(report()));
+  if (!reuse && log::level() <= log::Level::Debug)
+    log::debug("transient images placed\n{}", formatMemoryReport(report()));
   std::vector<const rhi::Image*> out;
   for (const rhi::Image& img : images_) out.push_back(&img);
   return out;
@@ -154,7 +171,7 @@ FrameMemoryReport TransientPool::report() const {
   for (size_t i = 0; i < requests_.size(); ++i) {
     const TransientRequest& r = requests_[i];
     report.entries.push_back({r.name, r.desc, items_[i].size, false, int32_t(plan_.placements[i].heap),
-                               plan_.placements[i].offset, r.firstPass, r.lastPass});
+                              plan_.placements[i].offset, r.firstPass, r.lastPass});
     report.transientUnaliasedBytes += items_[i].size;
   }
   report.transientBytes = plan_.totalBytes();
@@ -165,4 +182,4 @@ FrameMemoryReport TransientPool::report() const {
   return report;
 }
 
-} // namespace rayster::graph
+}  // namespace rayster::graph

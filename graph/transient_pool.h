@@ -83,4 +83,4 @@ class TransientPool {
   size_t rebuilds_ = 0;
 };
 
-} // namespace rayster::graph
+}  // namespace rayster::graph

@@ -17,7 +17,7 @@ float radicalInverse(uint32_t bits) {
   return float(bits) * 2.3283064365386963e-10f;
 }
 
-} // namespace
+}  // namespace
 
 glm::vec2 integrateDfg(float nv, float roughness, uint32_t samples) {
   // n·v = 0 has no visible normals; the grazing texel uses a nearly grazing view instead.
@@ -47,4 +47,4 @@ std::vector<glm::vec2> computeDfgTable(uint32_t size, uint32_t samples) {
   return table;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -26,4 +26,4 @@ glm::vec2 integrateDfg(float nv, float roughness, uint32_t samples);
 // The whole table, row-major (roughness rows of n·v texels).
 std::vector<glm::vec2> computeDfgTable(uint32_t size = kDfgSize, uint32_t samples = kDfgSamples);
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -10,4 +10,4 @@ void setFrameMemory(RenderOutput::SceneStats& st, const graph::FrameMemoryReport
   st.frameMemoryReport = graph::formatMemoryReport(r);
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -7,4 +7,4 @@ namespace rayster::render {
 
 void setFrameMemory(RenderOutput::SceneStats& stats, const graph::FrameMemoryReport& report);
 
-} // namespace rayster::render
+}  // namespace rayster::render

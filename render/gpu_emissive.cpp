@@ -17,8 +17,8 @@
 
 namespace rayster::render {
 
-void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, const std::vector<uint32_t>& meshFirstGeometry,
-                             GpuScene& gs) {
+void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene,
+                             const std::vector<uint32_t>& meshFirstGeometry, GpuScene& gs) {
   std::vector<gpu::EmissiveTriangle> rows;
   double area = 0;
   for (const scene::Instance& inst : scene.instances) {
@@ -59,8 +59,8 @@ void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, const
   gs.emissiveTriangleCount = uint32_t(rows.size());
   gs.emissiveArea = float(area);
   if (rows.empty()) rows.push_back({});  // a buffer must not be empty
-  gs.emissiveTriangles =
-      rhi::createBufferWithData(ctx, std::as_bytes(std::span(rows)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "emissive-triangles");
+  gs.emissiveTriangles = rhi::createBufferWithData(ctx, std::as_bytes(std::span(rows)),
+                                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "emissive-triangles");
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -8,9 +8,9 @@
 #include "core/half.h"
 #include "render/dfg.h"
 #include "render/gpu_scene.h"
-#include "rhi/upload.h"
 #include "rhi/context.h"
 #include "rhi/resources.h"
+#include "rhi/upload.h"
 #include "shaders/shared/types.h"
 
 namespace rayster::render {
@@ -161,7 +161,7 @@ std::vector<uint16_t> prefilterEnvironment(const scene::Environment& env) {
   return halves;
 }
 
-} // namespace
+}  // namespace
 
 void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs) {
   const scene::Environment& env = scene.environment;
@@ -232,14 +232,14 @@ void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& g
     cdf = environmentCdf(out.cdfWidth, out.cdfHeight,
                          [&](float u, float v) { return skyRadiance(env, equirectDirection(u, v)); });
   }
-  gs.environmentCdf =
-      rhi::createBufferWithData(ctx, std::as_bytes(std::span(cdf)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "environment-cdf");
+  gs.environmentCdf = rhi::createBufferWithData(ctx, std::as_bytes(std::span(cdf)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                "environment-cdf");
   if (out.kind == gpu::kEnvironmentBlack) return;
   const std::vector<uint16_t> levels = prefilterEnvironment(env);
-  gs.environmentPrefiltered =
-      rhi::uploadImage(ctx, {VK_FORMAT_R16G16B16A16_SFLOAT, gpu::kPrefilteredWidth,
-                             gpu::kPrefilteredWidth / 2 * gpu::kPrefilteredLevels, 1, 0},
-                       std::as_bytes(std::span(levels)), false, "environment-prefiltered");
+  gs.environmentPrefiltered = rhi::uploadImage(ctx,
+                                               {VK_FORMAT_R16G16B16A16_SFLOAT, gpu::kPrefilteredWidth,
+                                                gpu::kPrefilteredWidth / 2 * gpu::kPrefilteredLevels, 1, 0},
+                                               std::as_bytes(std::span(levels)), false, "environment-prefiltered");
   // Longitude wraps; the shader keeps latitude inside each level.
   gs.samplers.emplace_back(ctx, VK_FILTER_LINEAR, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT,
                            VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false);
@@ -261,4 +261,4 @@ void uploadDfgTable(rhi::Context& ctx, GpuScene& gs) {
   gs.dfgSlot = gs.bindless->add(gs.dfgTable.view(), gs.samplers.back().handle());
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

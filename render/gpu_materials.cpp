@@ -17,8 +17,8 @@
 #include <map>
 
 #include "render/gpu_scene.h"
-#include "rhi/upload.h"
 #include "rhi/context.h"
+#include "rhi/upload.h"
 #include "shaders/shared/types.h"
 
 namespace rayster::render {
@@ -26,14 +26,17 @@ namespace {
 
 VkSamplerAddressMode toVk(scene::Wrap w) {
   switch (w) {
-    case scene::Wrap::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    case scene::Wrap::MirroredRepeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
-    default: return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    case scene::Wrap::ClampToEdge:
+      return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    case scene::Wrap::MirroredRepeat:
+      return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+    default:
+      return VK_SAMPLER_ADDRESS_MODE_REPEAT;
   }
 }
 VkFilter toVk(scene::Filter f) { return f == scene::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
 
-} // namespace
+}  // namespace
 
 rhi::Image uploadTexture(rhi::Context& ctx, const scene::ImageData& img) {
   // UNORM storage with an sRGB view: colour textures sample through the view, data textures not.
@@ -93,10 +96,10 @@ void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs)
     r.emissive = m.emissive;
     r.metallic = m.metallic;
     r.roughness = m.roughness;
-    r.flags = (m.doubleSided ? gpu::kMaterialDoubleSided : 0u) | (m.cullsBackFaces() ? gpu::kMaterialCullsBackFaces : 0u) |
-              (m.alphaMode == scene::AlphaMode::Mask ? gpu::kMaterialAlphaMask : 0u) |
-              (m.alphaMode == scene::AlphaMode::Blend ? gpu::kMaterialAlphaBlend : 0u) |
-              (m.unlit ? gpu::kMaterialUnlit : 0u);
+    r.flags =
+        (m.doubleSided ? gpu::kMaterialDoubleSided : 0u) | (m.cullsBackFaces() ? gpu::kMaterialCullsBackFaces : 0u) |
+        (m.alphaMode == scene::AlphaMode::Mask ? gpu::kMaterialAlphaMask : 0u) |
+        (m.alphaMode == scene::AlphaMode::Blend ? gpu::kMaterialAlphaBlend : 0u) | (m.unlit ? gpu::kMaterialUnlit : 0u);
     r.alphaCutoff = m.alphaCutoff;
     r.normalScale = m.normalScale;
     r.occlusionStrength = m.occlusionStrength;
@@ -123,13 +126,13 @@ void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs)
     r.ior = 1.5f;
     r.specular = 1.0f;
     r.specularColor = glm::vec3(1.0f);
-    for (gpu::TextureSlot* t : {&r.baseColorTexture, &r.metallicRoughnessTexture, &r.normalTexture,
-                                &r.occlusionTexture, &r.emissiveTexture, &r.specularTexture, &r.specularColorTexture})
+    for (gpu::TextureSlot* t : {&r.baseColorTexture, &r.metallicRoughnessTexture, &r.normalTexture, &r.occlusionTexture,
+                                &r.emissiveTexture, &r.specularTexture, &r.specularColorTexture})
       *t = {gpu::kNoTexture, 0, 0, 0, glm::vec2(0), glm::vec2(1)};
     rows.push_back(r);
   }
-  gs.materials = rhi::createBufferWithData(ctx, std::as_bytes(std::span(rows)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                           "materials");
+  gs.materials =
+      rhi::createBufferWithData(ctx, std::as_bytes(std::span(rows)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials");
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -29,14 +29,14 @@ rhi::Buffer tableBuffer(rhi::Context& ctx, const std::vector<T>& rows, const cha
   return rhi::createBufferWithData(ctx, std::as_bytes(std::span(rows)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, name);
 }
 
-} // namespace
+}  // namespace
 
 gpu::LightRecord toRecord(const scene::Light& l) {
   gpu::LightRecord r{};
   r.position = l.position;
   r.radius = l.radius;
   r.radiance = l.color * l.intensity;
-  r.type = l.type == scene::LightType::Point ? gpu::kLightPoint
+  r.type = l.type == scene::LightType::Point  ? gpu::kLightPoint
            : l.type == scene::LightType::Spot ? gpu::kLightSpot
                                               : gpu::kLightDirectional;
   r.direction = glm::normalize(l.direction);
@@ -98,8 +98,8 @@ void addTriangles(rhi::Context& ctx, const scene::Scene& scene, const scene::Pri
                                                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "vertex-colors"))
                        .address();
   }
-  rows.push_back({vb.address(), ib.address(), prim.material, uint32_t(vertices.size()),
-                  uint32_t(prim.indices.size()), gpu::kGeometryTriangles, colorAddress});
+  rows.push_back({vb.address(), ib.address(), prim.material, uint32_t(vertices.size()), uint32_t(prim.indices.size()),
+                  gpu::kGeometryTriangles, colorAddress});
   blas.push_back({0, 0, vb.address(), sizeof(gpu::Vertex), uint32_t(vertices.size()), ib.address(),
                   uint32_t(prim.indices.size()),
                   !alphaTested(scene, prim.material) && !(mixedSides && cullsBackFaces(scene, prim.material))});
@@ -121,12 +121,12 @@ void addSpheres(rhi::Context& ctx, const scene::Scene& scene, const std::vector<
       rhi::createBufferWithData(ctx, std::as_bytes(std::span(boxes)), geometryUsage(ctx), "sphere-aabbs"));
   const rhi::Buffer& sb = gs.indexBuffers.emplace_back(
       rhi::createBufferWithData(ctx, std::as_bytes(std::span(records)), geometryUsage(ctx), "spheres"));
-  rows.push_back({sb.address(), ab.address(), records.front().material, uint32_t(records.size()), 0,
-                  gpu::kGeometrySpheres, 0});
+  rows.push_back(
+      {sb.address(), ab.address(), records.front().material, uint32_t(records.size()), 0, gpu::kGeometrySpheres, 0});
   blas.push_back({uint32_t(boxes.size()), ab.address(), 0, 0, 0, 0, 0, opaque});
 }
 
-} // namespace
+}  // namespace
 
 Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   RAYSTER_TRY(scene::validate(scene));
@@ -183,8 +183,8 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
                           meshBounds[inst.mesh][p].first, meshBounds[inst.mesh][p].second});
     if (!mesh.spheres.empty())
       gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + uint32_t(mesh.primitives.size()),
-                          uint32_t(mesh.spheres.size()), true, inst.castsShadows, false, meshBounds[inst.mesh].back().first,
-                          meshBounds[inst.mesh].back().second});
+                          uint32_t(mesh.spheres.size()), true, inst.castsShadows, false,
+                          meshBounds[inst.mesh].back().first, meshBounds[inst.mesh].back().second});
     gs.triangleCount += meshTriangles[inst.mesh];
     gs.sphereCount += mesh.spheres.size();
 
@@ -197,7 +197,9 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     ti.instanceShaderBindingTableRecordOffset = mesh.spheres.empty() ? gpu::kHitGroupTriangles : gpu::kHitGroupSpheres;
     // Facing is decided in object space, where glTF's counter-clockwise fronts hold whatever the
     // instance's determinant: a mirrored node needs no flip (glTF 2.0 §3.7.4).
-    ti.flags = meshSides[inst.mesh] == Sidedness::AllCull ? 0u : VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR;
+    ti.flags = meshSides[inst.mesh] == Sidedness::AllCull
+                   ? 0u
+                   : uint32_t(VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR);
     ti.accelerationStructureReference = inst.mesh;  // patched with the BLAS address below
     tlasInstances.push_back(ti);
   }
@@ -212,8 +214,8 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   if (scene.animated()) {
     gs.instancesDynamic = true;
     // Rewritten by the host every frame while instances move (frames are serialised).
-    gs.instances = rhi::Buffer(ctx, instanceRows.size() * sizeof(gpu::InstanceRecord), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                               rhi::MemoryUsage::Upload, "instances");
+    gs.instances = rhi::Buffer(ctx, instanceRows.size() * sizeof(gpu::InstanceRecord),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, rhi::MemoryUsage::Upload, "instances");
     std::memcpy(gs.instances.mapped(), instanceRows.data(), instanceRows.size() * sizeof(gpu::InstanceRecord));
   } else {
     gs.instances = tableBuffer(ctx, instanceRows, "instances");
@@ -237,14 +239,15 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     ctx.collectGarbage();
     ctx.memory().releaseEmptyBlocks();
   };
-  if (!ctx.caps().rayTracing()) {  // the raster mode needs no acceleration structures
+  if (!ctx.caps().rayTracing()) {                 // the raster mode needs no acceleration structures
     gs.tlasInstances = std::move(tlasInstances);  // animation still poses them (never built)
     releaseStaging();
     return gs;
   }
   auto t1 = Clock::now();
   gs.blases = rhi::buildBlases(ctx, blasInputs, &gs.accelStats);
-  for (auto& ti : tlasInstances) ti.accelerationStructureReference = gs.blases[ti.accelerationStructureReference].address();
+  for (auto& ti : tlasInstances)
+    ti.accelerationStructureReference = gs.blases[ti.accelerationStructureReference].address();
   gs.tlas = rhi::Tlas::build(ctx, tlasInstances, &gs.accelStats);
   gs.tlasInstances = std::move(tlasInstances);
   gs.accelBuildMs = msSince(t1);
@@ -252,4 +255,4 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   return gs;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -21,9 +21,9 @@
 namespace rayster::render {
 
 struct GpuEnvironment {
-  uint32_t kind = 0;                 // gpu::kEnvironment*
-  uint32_t slot = 0xFFFFFFFFu;       // bindless slot of the equirect map
-  uint32_t prefilteredSlot = 0xFFFFFFFFu;  // GGX-prefiltered levels (gpu::kPrefilteredLevels)
+  uint32_t kind = 0;                        // gpu::kEnvironment*
+  uint32_t slot = 0xFFFFFFFFu;              // bindless slot of the equirect map
+  uint32_t prefilteredSlot = 0xFFFFFFFFu;   // GGX-prefiltered levels (gpu::kPrefilteredLevels)
   std::array<glm::vec3, 9> irradianceSh{};  // cosine-convolved SH9 of the radiance, × intensity
   // Importance sampling (the path tracer): a piecewise-constant 2D distribution over cdfWidth ×
   // cdfHeight equirect cells ∝ luminance × sinθ; 0 × 0 for a black environment.
@@ -39,7 +39,7 @@ struct GpuScene {
     uint32_t geometry;
     uint32_t count;  // triangles: index count; spheres: sphere count (one box each)
     bool spheres;
-    bool castsShadows = true;  // false for a light's visible shape (no shadow-map draw)
+    bool castsShadows = true;     // false for a light's visible shape (no shadow-map draw)
     bool cullsBackFaces = false;  // scene::Material::cullsBackFaces(): rays (and shadow maps) skip back faces
     glm::vec3 aabbMin{0.0f}, aabbMax{0.0f};  // object space: what GPU culling tests
   };
@@ -51,21 +51,21 @@ struct GpuScene {
   std::vector<rhi::Sampler> samplers;
   std::unique_ptr<rhi::BindlessTextures> bindless;
   rhi::Image environmentMap;
-  rhi::Buffer environmentCdf;      // float[]: see GpuEnvironment
-  rhi::Buffer emissiveTriangles;   // gpu::EmissiveTriangle[] (render/gpu_emissive.cpp)
+  rhi::Buffer environmentCdf;     // float[]: see GpuEnvironment
+  rhi::Buffer emissiveTriangles;  // gpu::EmissiveTriangle[] (render/gpu_emissive.cpp)
   uint32_t emissiveTriangleCount = 0;
   float emissiveArea = 0.0f;
   rhi::Image environmentPrefiltered;  // built once at upload; glossy environment light of the raster mode
   GpuEnvironment environment;
-  rhi::Image dfgTable;                // split-sum DFG (render/dfg.h), RG16F
-  uint32_t dfgSlot = 0xFFFFFFFFu;     // its bindless slot
+  rhi::Image dfgTable;             // split-sum DFG (render/dfg.h), RG16F
+  uint32_t dfgSlot = 0xFFFFFFFFu;  // its bindless slot
   // Built only on devices with ray tracing (rhi::Capabilities::rayTracing()); empty otherwise.
   std::vector<rhi::AccelerationStructure> blases;
   rhi::Tlas tlas;
   std::vector<VkAccelerationStructureInstanceKHR> tlasInstances;  // as built; updated when instances move
   graph::ResourceState tlasState;  // the TLAS as a graph resource (render/passes/passes.h beginFrameGraph)
-  std::vector<Draw> draws;  // raster: one per (instance, primitive or sphere set)
-  rhi::Buffer drawRecords;  // gpu::DrawRecord[], one per draw, in order (render/passes/cull.cpp)
+  std::vector<Draw> draws;         // raster: one per (instance, primitive or sphere set)
+  rhi::Buffer drawRecords;         // gpu::DrawRecord[], one per draw, in order (render/passes/cull.cpp)
   // The culling pass's per-frame buffers and their graph states (render/passes/cull.h). Shared
   // ownership only so the type may stay incomplete here; mutable state of a const scene.
   std::shared_ptr<struct CullBuffers> cull;
@@ -77,7 +77,7 @@ struct GpuScene {
   bool instancesDynamic = false;  // animated, or edited since upload: the instance table is rewritten per frame
   uint32_t lightCount = 0;
   bool anyHit = false;  // some geometry is not opaque (alpha tests, back-face rejection): rays may not be forced opaque
-  uint64_t triangleCount = 0;   // over all instances
+  uint64_t triangleCount = 0;  // over all instances
   // The scene's world bounds at upload (rest pose): scene::Scene::bounds() visits every vertex of
   // every instance, far too slow per frame with thousands of instances.
   scene::Aabb bounds;
@@ -104,11 +104,11 @@ void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs)
 void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs);
 // The path tracer's emissive-triangle list (render/gpu_emissive.cpp); `meshFirstGeometry`: each
 // mesh's first GeometryRecord row.
-void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, const std::vector<uint32_t>& meshFirstGeometry,
-                             GpuScene& gs);
+void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene,
+                             const std::vector<uint32_t>& meshFirstGeometry, GpuScene& gs);
 // The split-sum DFG table of glossy reflections, into the bindless array (render/gpu_environment.cpp).
 void uploadDfgTable(rhi::Context& ctx, GpuScene& gs);
 // Uploads RGBA8 pixels to a sampled image with a full mip chain (render/gpu_materials.cpp).
 rhi::Image uploadTexture(rhi::Context& ctx, const scene::ImageData& image);
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -58,7 +58,8 @@ InstanceMotion::Update InstanceMotion::update(GpuScene& gpu, bool animated, floa
     for (int rr = 0; rr < 3; ++rr)
       for (int c = 0; c < 4; ++c) t.matrix[rr][c] = m[c][rr];
   }
-  std::memcpy(gpu.instances.mapped(), gpu.instanceRecords.data(), gpu.instanceRecords.size() * sizeof(gpu::InstanceRecord));
+  std::memcpy(gpu.instances.mapped(), gpu.instanceRecords.data(),
+              gpu.instanceRecords.size() * sizeof(gpu::InstanceRecord));
   settling_ = dirty_;
   dirty_ = false;
   tlasStale_ = true;
@@ -71,4 +72,4 @@ bool InstanceMotion::takeTlasRefit(bool refitting) {
   return stale;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

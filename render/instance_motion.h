@@ -44,4 +44,4 @@ class InstanceMotion {
   bool tlasStale_ = false;
 };
 
-} // namespace rayster::render
+}  // namespace rayster::render

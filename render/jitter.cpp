@@ -29,7 +29,7 @@ Mat jittered(const Mat& clipFromWorld, Vec ndcOffset) {
   t[3][1] = ndcOffset.y;
   return t * clipFromWorld;
 }
-} // namespace
+}  // namespace
 
 glm::mat4 jitteredClipFromWorld(const glm::mat4& clipFromWorld, glm::vec2 ndcOffset) {
   return jittered(clipFromWorld, ndcOffset);
@@ -38,4 +38,4 @@ glm::dmat4 jitteredClipFromWorld(const glm::dmat4& clipFromWorld, glm::dvec2 ndc
   return jittered(clipFromWorld, ndcOffset);
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

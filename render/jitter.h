@@ -28,4 +28,4 @@ glm::vec2 jitterNdc(uint32_t frame, uint32_t width, uint32_t height);
 glm::mat4 jitteredClipFromWorld(const glm::mat4& clipFromWorld, glm::vec2 ndcOffset);
 glm::dmat4 jitteredClipFromWorld(const glm::dmat4& clipFromWorld, glm::dvec2 ndcOffset);
 
-} // namespace rayster::render
+}  // namespace rayster::render

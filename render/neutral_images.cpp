@@ -20,16 +20,16 @@ NeutralImages::NeutralImages(rhi::Context& ctx)
   graph::TransientPool pool(false);
   graph::RenderGraph graph(&ctx, &pool);
   for (auto [h, value] : {std::pair{white(graph), 1.0f}, {black(graph), 0.0f}})
-    graph.addPass("neutral-clear", [h](graph::PassBuilder& b) { b.write(h, graph::Use::TransferDst); },
-                  [h, value](graph::PassContext& pc) {
-                    const VkClearColorValue colour{{value, value, value, value}};
-                    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-                    vkCmdClearColorImage(pc.cmd, pc.image(h).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &colour,
-                                         1, &range);
-                  });
+    graph.addPass(
+        "neutral-clear", [h](graph::PassBuilder& b) { b.write(h, graph::Use::TransferDst); },
+        [h, value](graph::PassContext& pc) {
+          const VkClearColorValue colour{{value, value, value, value}};
+          const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+          vkCmdClearColorImage(pc.cmd, pc.image(h).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &colour, 1, &range);
+        });
   rhi::OneShot once(ctx);
   graph.execute(once, nullptr);
   once.submitAndWait();
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -18,9 +18,13 @@ class NeutralImages {
  public:
   explicit NeutralImages(rhi::Context& ctx);
   // A one-layer visibility array holding 1: unoccluded, fully lit.
-  graph::ImageHandle white(graph::RenderGraph& graph) { return graph.importImage("neutral-white", &white_, &whiteState_); }
+  graph::ImageHandle white(graph::RenderGraph& graph) {
+    return graph.importImage("neutral-white", &white_, &whiteState_);
+  }
   // Radiance 0 (RGBA16F): no light.
-  graph::ImageHandle black(graph::RenderGraph& graph) { return graph.importImage("neutral-black", &black_, &blackState_, kRadianceImage); }
+  graph::ImageHandle black(graph::RenderGraph& graph) {
+    return graph.importImage("neutral-black", &black_, &blackState_, kRadianceImage);
+  }
   // Whether `image` is one of these (an AOV of it is the constant broadcast to the frame).
   bool holds(const rhi::Image& image) const { return &image == &white_ || &image == &black_; }
 
@@ -29,4 +33,4 @@ class NeutralImages {
   graph::ResourceState whiteState_, blackState_;
 };
 
-} // namespace rayster::render
+}  // namespace rayster::render

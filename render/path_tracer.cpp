@@ -17,15 +17,18 @@ namespace rayster::render {
 Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTraceResources& r,
                                         const std::function<void(uint32_t)>& writeConstants) {
   if (s.frames == 0) return makeError(ExitCode::BadArguments, "--mode pathtrace needs at least one sample");
-  const size_t skipped = size_t(std::count_if(s.aovs.begin(), s.aovs.end(), [](const std::string& n) { return n != "variance"; }));
+  const size_t skipped =
+      size_t(std::count_if(s.aovs.begin(), s.aovs.end(), [](const std::string& n) { return n != "variance"; }));
   if (skipped > 0) log::info("{} AOV(s) skipped: --mode pathtrace writes only 'variance'", skipped);
   const bool variance = std::find(s.aovs.begin(), s.aovs.end(), "variance") != s.aovs.end();
   const rhi::ImageDesc desc{kPathAccumulationFormat, s.width, s.height, 1,
                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT};
 
   const size_t pixels = size_t(s.width) * s.height;
-  rhi::Buffer ldrReadback(r.ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
-  rhi::Buffer meanReadback(r.ctx, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "pt-readback");
+  rhi::Buffer ldrReadback(r.ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
+                          "ldr-readback");
+  rhi::Buffer meanReadback(r.ctx, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
+                           "pt-readback");
   rhi::Buffer momentsReadback(r.ctx, variance ? pixels * 16 : 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                               rhi::MemoryUsage::Readback, "pt-moments-readback");
   graph::ResourceState ldrState, meanState, momentsState;
@@ -48,8 +51,7 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
       readback(graph, ldr, graph.importBuffer("ldr-readback", &ldrReadback, &ldrState));
       readback(graph, mean, graph.importBuffer("pt-readback", &meanReadback, &meanState));
       if (variance)
-        readback(graph, acc.moments,
-                 graph.importBuffer("pt-moments-readback", &momentsReadback, &momentsState));
+        readback(graph, acc.moments, graph.importBuffer("pt-moments-readback", &momentsReadback, &momentsState));
     }
     VkCommandBuffer cmd = r.commands.begin();
     r.timers.reset(cmd);
@@ -82,7 +84,8 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
     for (size_t i = 0; i < pixels; ++i) {
       for (int c = 0; c < 3; ++c) {
         const float m = out.hdr.rgba[i * 4 + c];
-        v.rgba[i * 4 + c] = n > 1.0f ? std::max(0.0f, sq[i * 4 + c] - m * m) / (n - 1.0f) / (exposure * exposure) : 0.0f;
+        v.rgba[i * 4 + c] =
+            n > 1.0f ? std::max(0.0f, sq[i * 4 + c] - m * m) / (n - 1.0f) / (exposure * exposure) : 0.0f;
       }
       v.rgba[i * 4 + 3] = 1.0f;
     }
@@ -93,4 +96,4 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
   return out;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

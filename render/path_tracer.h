@@ -18,12 +18,12 @@ class CommandList;
 class PipelineLibrary;
 class Sampler;
 class TimestampPool;
-} // namespace rayster::rhi
+}  // namespace rayster::rhi
 
 namespace rayster::graph {
 class HistoryStore;
 class TransientPool;
-}
+}  // namespace rayster::graph
 
 namespace rayster::render {
 
@@ -60,4 +60,4 @@ void summarisePasses(const std::vector<std::string>& order, const std::map<std::
 // HDR outputs do not depend on --exposure.
 void unexpose(ImageF& image, float exposure);
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -22,7 +22,7 @@ inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
 inline constexpr VkFormat kVisibilityFormat = VK_FORMAT_R16_SFLOAT;
 inline constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kPathAccumulationFormat = VK_FORMAT_R32G32B32A32_SFLOAT;  // sums of many samples: fp32
-inline constexpr VkFormat kTaaHistoryFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // a resolved image: fp16 is enough
+inline constexpr VkFormat kTaaHistoryFormat = VK_FORMAT_R16G16B16A16_SFLOAT;        // a resolved image: fp16 is enough
 
 // Hit groups by geometry kind (gpu::kHitGroupTriangles, gpu::kHitGroupSpheres), shared by the
 // ray-tracing passes that describe their pipelines (rhi/pipeline_library.h): alpha-tested triangles
@@ -33,4 +33,4 @@ inline std::vector<rhi::HitGroup> radianceHitGroups() {
 // Shadow and AO rays skip closest hit: the miss shader marks visibility, any-hit tests alpha.
 inline std::vector<rhi::HitGroup> shadowHitGroups() { return {{"", "alpha.rahit", ""}, {"", "", "sphere.rint"}}; }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -24,11 +24,11 @@ RasterFrameOutput RasterFrame::record(graph::RenderGraph& graph, const FrameInpu
   out.ao = constants.ao;
   out.indirect = constants.zero;
   // Lit without specular light: what reflections and refractions see.
-  const graph::ImageHandle lit =
-      shadeLighting(graph, in, gb, {out.visibility, constants.zero, constants.ao, constants.zero, {}}, "lighting-direct");
+  const graph::ImageHandle lit = shadeLighting(
+      graph, in, gb, {out.visibility, constants.zero, constants.ao, constants.zero, {}}, "lighting-direct");
   out.specular = screenSpaceSpecular(graph, in, gb, lit);
   out.hdr = shadeLighting(graph, in, gb, {out.visibility, out.specular, constants.ao, constants.zero, {}});
   return out;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

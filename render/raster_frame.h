@@ -34,4 +34,4 @@ class RasterFrame {
   ShadowAtlas atlas_;
 };
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -20,11 +20,21 @@ namespace rayster::render {
 
 const std::vector<std::string>& aovNames() {
   static const std::vector<std::string> names = [] {
-    std::vector<std::string> n = {"depth",          "normal",          "albedo",
-                                  "material",       "emissive",        "specular",
-                                  "motion",         "shadow-raw",      "shadow-denoised",
-                                  "reflection-raw", "reflection-denoised", "ao-raw",
-                                  "ao-denoised",    "indirect-raw",    "indirect-denoised"};
+    std::vector<std::string> n = {"depth",
+                                  "normal",
+                                  "albedo",
+                                  "material",
+                                  "emissive",
+                                  "specular",
+                                  "motion",
+                                  "shadow-raw",
+                                  "shadow-denoised",
+                                  "reflection-raw",
+                                  "reflection-denoised",
+                                  "ao-raw",
+                                  "ao-denoised",
+                                  "indirect-raw",
+                                  "indirect-denoised"};
     // Per shadowed light: layer i of the visibility arrays ("shadow-raw" is layer 0).
     for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-raw");
     for (uint32_t i = 0; i < gpu::kMaxShadowLights; ++i) n.push_back("shadow" + std::to_string(i) + "-denoised");
@@ -37,9 +47,12 @@ const std::vector<std::string>& aovNames() {
 
 const char* modeName(Mode m) {
   switch (m) {
-    case Mode::PathTrace: return "pathtrace";
-    case Mode::Raster: return "raster";
-    default: return "hybrid";
+    case Mode::PathTrace:
+      return "pathtrace";
+    case Mode::Raster:
+      return "raster";
+    default:
+      return "hybrid";
   }
 }
 
@@ -47,19 +60,29 @@ const char* indirectRateName(IndirectRate r) { return r == IndirectRate::Quarter
 
 const char* primaryName(Primary p) {
   switch (p) {
-    case Primary::Raster: return "raster";
-    case Primary::Traced: return "rt";
-    default: return "auto";
+    case Primary::Raster:
+      return "raster";
+    case Primary::Traced:
+      return "rt";
+    default:
+      return "auto";
   }
 }
 
 Renderer::Impl::Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
-    : ctx(c), scene(s), gpu(std::move(g)), pipelines(c, gpu.bindless->layout()),
+    : ctx(c),
+      scene(s),
+      gpu(std::move(g)),
+      pipelines(c, gpu.bindless->layout()),
       nearest(c, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       linear(c, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       constants(c, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, rhi::MemoryUsage::Upload,
                 "frame-constants"),
-      commands(c), timers(c, kMaxTimedPasses), neutral(c), specular(specularSurfaces(s)), raster(c) {}
+      commands(c),
+      timers(c, kMaxTimedPasses),
+      neutral(c),
+      specular(specularSurfaces(s)),
+      raster(c) {}
 
 float Renderer::Impl::aoRadius(const RenderSettings& s) const {
   if (s.aoRadius > 0.0f) return s.aoRadius;
@@ -75,7 +98,7 @@ int32_t Renderer::Impl::findInstance(const std::string& name) const {
 }
 
 glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::Camera& cam, glm::vec2 jitter,
-                         const glm::mat4* prevClipFromWorld) {
+                                         const glm::mat4* prevClipFromWorld) {
   gpu::FrameConstants fc{};
   const float aspect = float(s.width) / float(s.height);
   // In double, then rounded once: with a near plane of 1 mm the projection's depth row is ~1e-3 of
@@ -125,9 +148,10 @@ glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::C
   // Untraced glossy light (rougher than the glossy threshold) comes from the GGX-prefiltered
   // environment in both modes. The raster mode has neither AO nor indirect light: ambient and the
   // SH environment stand in.
-  fc.effectFlags = gpu::kEffectPrefilteredEnv |
-                   (s.mode == Mode::Raster ? 0u : (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u)) |
-                   (indirectQuarter(s) ? gpu::kEffectIndirectQuarter : 0u);
+  fc.effectFlags =
+      gpu::kEffectPrefilteredEnv |
+      (s.mode == Mode::Raster ? 0u : (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u)) |
+      (indirectQuarter(s) ? gpu::kEffectIndirectQuarter : 0u);
   fc.dfgSlot = gpu.dfgSlot;
   fc.emissiveTriangles = gpu.emissiveTriangles.address();
   fc.environmentCdf = gpu.environmentCdf.address();
@@ -149,11 +173,14 @@ double Renderer::Impl::timeProducer(const RenderSettings& s, Primary p) {
     const graph::AccelHandle tlas = beginFrameGraph(graph, gpu, constants, nearest);
     FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, tlas};
     GBuffer gb = p == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
-    graph.addPass("keep", [&](graph::PassBuilder& b) {
-      b.read(gb.normals, graph::Use::SampledCompute);
-      b.sideEffect();
-      b.kind(graph::PassKind::Utility);
-    }, [](graph::PassContext&) {});
+    graph.addPass(
+        "keep",
+        [&](graph::PassBuilder& b) {
+          b.read(gb.normals, graph::Use::SampledCompute);
+          b.sideEffect();
+          b.kind(graph::PassKind::Utility);
+        },
+        [](graph::PassContext&) {});
     VkCommandBuffer cmd = commands.begin();
     timers.reset(cmd);
     graph.execute(cmd, &timers);
@@ -185,14 +212,21 @@ Result<const scene::Camera*> Renderer::Impl::findCamera(const RenderSettings& s)
   if (s.camera.empty()) return &scene.cameras.front();
   auto it = std::find_if(scene.cameras.begin(), scene.cameras.end(),
                          [&](const scene::Camera& c) { return c.name == s.camera; });
-  if (it == scene.cameras.end()) return makeError(ExitCode::BadArguments, "the scene has no camera named '{}'", s.camera);
+  if (it == scene.cameras.end())
+    return makeError(ExitCode::BadArguments, "the scene has no camera named '{}'", s.camera);
   return &*it;
 }
 
 RenderOutput::SceneStats Renderer::Impl::sceneStats() const {
-  RenderOutput::SceneStats st{gpu.triangleCount, gpu.sphereCount, gpu.accelStats.builtBytes,
-                              gpu.accelStats.compactedBytes, gpu.accelStats.tlasBytes, gpu.uploadMs,
-                              gpu.accelBuildMs, 0, 0};
+  RenderOutput::SceneStats st{gpu.triangleCount,
+                              gpu.sphereCount,
+                              gpu.accelStats.builtBytes,
+                              gpu.accelStats.compactedBytes,
+                              gpu.accelStats.tlasBytes,
+                              gpu.uploadMs,
+                              gpu.accelBuildMs,
+                              0,
+                              0};
   const rhi::MemoryStats mem = ctx.memory().stats();
   st.deviceBytesUsed = mem.usedBytes;
   st.deviceBytesReserved = mem.reservedBytes;
@@ -248,8 +282,8 @@ Status Renderer::Impl::beginRun(const RenderSettings& s) {
     // On the H100 the raster G-buffer costs many times the traced one; elsewhere raster is cheap.
     out.rasterGBufferMs = timeProducer(s, Primary::Raster);
     out.tracedGBufferMs = timeProducer(s, Primary::Traced);
-    out.primaryUsed = out.tracedGBufferMs >= 0 && out.tracedGBufferMs < out.rasterGBufferMs ? Primary::Traced
-                                                                                          : Primary::Raster;
+    out.primaryUsed =
+        out.tracedGBufferMs >= 0 && out.tracedGBufferMs < out.rasterGBufferMs ? Primary::Traced : Primary::Raster;
     log::info("primary: auto chose {} (raster G-buffer {:.3f} ms, traced {:.3f} ms)", primaryName(out.primaryUsed),
               out.rasterGBufferMs, out.tracedGBufferMs);
   }
@@ -258,11 +292,14 @@ Status Renderer::Impl::beginRun(const RenderSettings& s) {
   motion.beginRun(scene, run->animated);
   for (const RenderSettings::Move& m : s.moves)
     if (findInstance(m.instance) < 0)
-      return makeError(ExitCode::BadArguments, "--move-instance: scene '{}' has no instance '{}'", scene.name, m.instance);
+      return makeError(ExitCode::BadArguments, "--move-instance: scene '{}' has no instance '{}'", scene.name,
+                       m.instance);
   run->prevCamera = *cam;
   const size_t pixels = size_t(s.width) * s.height;
-  run->ldrReadback = rhi::Buffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
-  run->hdrReadback = rhi::Buffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "hdr-readback");
+  run->ldrReadback =
+      rhi::Buffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "ldr-readback");
+  run->hdrReadback =
+      rhi::Buffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "hdr-readback");
   return okStatus();  // AOV names are checked against the first frame's images (checkAovs)
 }
 
@@ -330,8 +367,8 @@ void Renderer::refreshLights() {
   std::vector<gpu::LightRecord> rows;
   for (const scene::Light& l : m.scene.lights) rows.push_back(toRecord(l));
   if (rows.empty() || rows.size() != m.gpu.lightCount) return;  // edits only, never a new count
-  m.gpu.lights = rhi::createBufferWithData(m.ctx, std::as_bytes(std::span(rows)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                           "lights");
+  m.gpu.lights =
+      rhi::createBufferWithData(m.ctx, std::as_bytes(std::span(rows)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights");
 }
 
 void Renderer::setInstanceTransform(uint32_t sceneInstance, const glm::mat4& worldFromObject) {
@@ -351,4 +388,4 @@ glm::mat4 Renderer::instanceTransform(uint32_t sceneInstance) const {
 uint64_t Renderer::deviceBytesUsed() const { return impl_->ctx.memory().stats().usedBytes; }
 const GpuScene& Renderer::gpuScene() const { return impl_->gpu; }
 
-} // namespace rayster::render
+}  // namespace rayster::render

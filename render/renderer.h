@@ -19,7 +19,7 @@
 namespace rayster::rhi {
 class Context;
 class Image;
-}
+}  // namespace rayster::rhi
 
 namespace rayster::render {
 
@@ -127,8 +127,8 @@ struct PassStats {
 const std::vector<std::string>& aovNames();
 
 struct RenderOutput {
-  Image8 ldr;  // tonemapped, sRGB-encoded
-  ImageF hdr;  // linear radiance
+  Image8 ldr;                                        // tonemapped, sRGB-encoded
+  ImageF hdr;                                        // linear radiance
   std::vector<std::pair<std::string, ImageF>> aovs;  // raw values, RGBA float (see aovNames())
   Mode modeUsed = Mode::Hybrid;
   Primary primaryUsed = Primary::Raster;
@@ -174,7 +174,7 @@ struct FrameStats {
   double gpuMs = 0;
   Primary primaryUsed = Primary::Raster;
   int64_t visibleDraws = -1;  // raster G-buffer draws after culling (-1: traced primaries)
-  scene::Camera camera;  // the camera the frame was rendered with
+  scene::Camera camera;       // the camera the frame was rendered with
 };
 
 class Renderer {
@@ -191,7 +191,7 @@ class Renderer {
   // Takes the settings-table entries that do not restart accumulation (render/settings_table.h
   // Setting::restarts, e.g. the tonemapper) into the current run, from the next frame on.
   void updateSettings(const RenderSettings& settings);
-  RenderOutput endRun();  // images of the last frame rendered with readback, stats over the run
+  RenderOutput endRun();          // images of the last frame rendered with readback, stats over the run
   RenderOutput readbackImages();  // the same images (no stats) without ending the run
   // The last frame rendered with `present`: RGBA8 holding sRGB-encoded values, in
   // TRANSFER_SRC_OPTIMAL layout, readable by the next submission on the queue.
@@ -219,4 +219,4 @@ class Renderer {
   std::unique_ptr<Impl> impl_;
 };
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -28,7 +28,7 @@ bool isCameraCut(const scene::Camera& before, const scene::Camera& now) {
   return cosAngle < std::cos(glm::radians(kCutAngleDegrees)) || now.yFov != before.yFov;
 }
 
-} // namespace
+}  // namespace
 
 FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   Run& r = *run;
@@ -46,9 +46,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
       w[3] = glm::vec4(m.position, 1.0f);
       motion.set(ctx, gpu, i, w);
     }
-  const scene::Camera camera = control.camera  ? *control.camera
-                               : s.cameraPath ? cameraOnPath(*r.cam, s, f)
-                                              : *r.cam;
+  const scene::Camera camera = control.camera ? *control.camera : s.cameraPath ? cameraOnPath(*r.cam, s, f) : *r.cam;
   // A cut (the first frame of a run, a jump of the camera, or a listed frame) restarts every history.
   const bool cut = f == 0 || control.cut || isCameraCut(r.prevCamera, camera) ||
                    std::find(s.cuts.begin(), s.cuts.end(), f) != s.cuts.end();
@@ -79,10 +77,11 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   }
   graph::ImageHandle hdr = images.hdr;
   if (s.taa) {
-    const graph::RenderGraph::History taa = graph.history(
-        "taa-history", {kTaaHistoryFormat, s.width, s.height, 1,
-                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
-        kRadianceImage);
+    const graph::RenderGraph::History taa =
+        graph.history("taa-history",
+                      {kTaaHistoryFormat, s.width, s.height, 1,
+                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+                      kRadianceImage);
     hdr = resolveTaa(graph, in, {hdr, gb.depth, taa.previous, taa.next, gb.motion, taa.frames});
   }
   images.hdr = hdr;
@@ -92,11 +91,14 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   else if (!control.readback)
     // Every frame's image counts as consumed, as a presented one would be: otherwise the graph
     // culls tonemapping in all frames but the last (whose readback uses it) and its timings miss them.
-    graph.addPass("output", [&](graph::PassBuilder& b) {
-      b.read(ldr, graph::Use::TransferSrc);
-      b.sideEffect();
-      b.kind(graph::PassKind::Utility);
-    }, [](graph::PassContext&) {});
+    graph.addPass(
+        "output",
+        [&](graph::PassBuilder& b) {
+          b.read(ldr, graph::Use::TransferSrc);
+          b.sideEffect();
+          b.kind(graph::PassKind::Utility);
+        },
+        [](graph::PassContext&) {});
   if (f == 0 && !s.aovs.empty()) r.failure = checkAovs(graph, gb, images);
   if (control.readback) addReadbacks(graph, gb, images, ldr);
 
@@ -171,7 +173,8 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   // An SVGF signal's colour and moments histories ("<name>-history", "<name>-moments").
   auto svgf = [&](const std::string& name, graph::ImageHandle raw) {
     if (!denoise) return raw;
-    const graph::RenderGraph::History color = graph.history(name + "-history", svgfColorHistoryDesc(in.size), kRadianceImage);
+    const graph::RenderGraph::History color =
+        graph.history(name + "-history", svgfColorHistoryDesc(in.size), kRadianceImage);
     const graph::RenderGraph::History moments = graph.history(name + "-moments", svgfMomentsHistoryDesc(in.size));
     return denoiseRadiance(graph, dn, name == "specular" ? "reflection" : name, surface, motion, raw,
                            {color.previous, color.next}, {moments.previous, moments.next},
@@ -208,17 +211,20 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
       v = denoiseShadows(graph, dn, surface, motion, v, {h.previous, h.next}, temporalFor(h.frames), "sky-visibility")
               .denoised;
     }
-    graph.addPass("sky-visibility-output", [&](graph::PassBuilder& b) {
-      b.read(v, graph::Use::TransferSrc);
-      b.sideEffect();
-      b.kind(graph::PassKind::Utility);
-    }, [](graph::PassContext&) {});
+    graph.addPass(
+        "sky-visibility-output",
+        [&](graph::PassBuilder& b) {
+          b.read(v, graph::Use::TransferSrc);
+          b.sideEffect();
+          b.kind(graph::PassKind::Utility);
+        },
+        [](graph::PassContext&) {});
   }
   if (s.rawRays) {
     traceRawPrimary(graph, in);
     traceRawShadows(graph, in, gb, lights);
-    o.rawTwins = traceRawTwins(graph, in, gb, {ao, manyLights, indirect, specularPass}, indirectQuarter(s),
-                               lightsPerHit());
+    o.rawTwins =
+        traceRawTwins(graph, in, gb, {ao, manyLights, indirect, specularPass}, indirectQuarter(s), lightsPerHit());
   }
   if (specularPass) {
     o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit());
@@ -233,4 +239,4 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   return o;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

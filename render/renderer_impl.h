@@ -60,11 +60,11 @@ struct Renderer::Impl {
   // SVGF colour and moments of reflections, indirect and many-light direct light) and of TAA: graph
   // resources that outlive each frame's graph (graph/history.h).
   graph::HistoryStore histories;
-  NeutralImages neutral;  // what lighting reads for an effect that records no pass
+  NeutralImages neutral;            // what lighting reads for an effect that records no pass
   const SpecularSurfaces specular;  // whether any material is smooth or transmissive enough to trace
-  RasterFrame raster;  // the raster mode's passes (render/raster_frame.h)
+  RasterFrame raster;               // the raster mode's passes (render/raster_frame.h)
   uint32_t frameIndex = 0;
-  InstanceMotion motion;  // animation and edits (render/instance_motion.h)
+  InstanceMotion motion;    // animation and edits (render/instance_motion.h)
   bool manyLights = false;  // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
   std::unique_ptr<PathTracer> pathTracer;  // created by the first path-traced render
 
@@ -91,7 +91,7 @@ struct Renderer::Impl {
     std::map<std::string, std::vector<double>> passTimes;
     std::vector<std::string> passOrder;
     std::map<std::string, graph::PassInfo> passInfo;  // what each reported pass declared
-    std::optional<Error> failure;  // set by a frame (an unknown AOV): the run ends with it
+    std::optional<Error> failure;                     // set by a frame (an unknown AOV): the run ends with it
   };
   std::optional<Run> run;
   // The presentable copy of the last frame's LDR image (FrameControl::present).
@@ -168,4 +168,4 @@ struct Renderer::Impl {
   void copyToOutput(graph::RenderGraph& graph, graph::ImageHandle ldr);
 };
 
-} // namespace rayster::render
+}  // namespace rayster::render

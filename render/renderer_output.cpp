@@ -18,45 +18,59 @@ float texel(const uint8_t* data, VkFormat format, size_t index, int channel) {
   switch (format) {
     case VK_FORMAT_R32_SFLOAT:
       return channel == 0 ? reinterpret_cast<const float*>(data)[index] : channel == 3 ? 1.0f : 0.0f;
-    case VK_FORMAT_D32_SFLOAT: return channel == 3 ? 1.0f : reinterpret_cast<const float*>(data)[index];
+    case VK_FORMAT_D32_SFLOAT:
+      return channel == 3 ? 1.0f : reinterpret_cast<const float*>(data)[index];
     case VK_FORMAT_R16_SFLOAT:
       return channel == 3 ? 1.0f : halfToFloat(reinterpret_cast<const uint16_t*>(data)[index]);
     case VK_FORMAT_R16G16_SFLOAT:
-      return channel < 2 ? halfToFloat(reinterpret_cast<const uint16_t*>(data)[index * 2 + channel]) : channel == 3 ? 1.0f : 0.0f;
-    case VK_FORMAT_R16G16B16A16_SFLOAT: return halfToFloat(reinterpret_cast<const uint16_t*>(data)[index * 4 + channel]);
-    case VK_FORMAT_R32G32B32A32_SFLOAT: return reinterpret_cast<const float*>(data)[index * 4 + channel];
+      return channel < 2    ? halfToFloat(reinterpret_cast<const uint16_t*>(data)[index * 2 + channel])
+             : channel == 3 ? 1.0f
+                            : 0.0f;
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+      return halfToFloat(reinterpret_cast<const uint16_t*>(data)[index * 4 + channel]);
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      return reinterpret_cast<const float*>(data)[index * 4 + channel];
     case VK_FORMAT_R32G32_SFLOAT:
       return channel < 2 ? reinterpret_cast<const float*>(data)[index * 2 + channel] : channel == 3 ? 1.0f : 0.0f;
     case VK_FORMAT_R32_UINT:  // ids: the value as a float (exact below 2^24)
       return channel == 0 ? float(reinterpret_cast<const uint32_t*>(data)[index]) : channel == 3 ? 1.0f : 0.0f;
     case VK_FORMAT_R32G32_UINT:  // packed words (the denoisers' surface): each as a float
-      return channel < 2 ? float(reinterpret_cast<const uint32_t*>(data)[index * 2 + channel]) : channel == 3 ? 1.0f : 0.0f;
+      return channel < 2    ? float(reinterpret_cast<const uint32_t*>(data)[index * 2 + channel])
+             : channel == 3 ? 1.0f
+                            : 0.0f;
     case VK_FORMAT_R16G16B16A16_SNORM:
       return std::max(-1.0f, reinterpret_cast<const int16_t*>(data)[index * 4 + channel] / 32767.0f);
-    case VK_FORMAT_R8G8B8A8_UNORM: return data[index * 4 + channel] / 255.0f;
-    default: return 0.0f;
+    case VK_FORMAT_R8G8B8A8_UNORM:
+      return data[index * 4 + channel] / 255.0f;
+    default:
+      return 0.0f;
   }
 }
 
 // 0: a format the AOVs do not read.
 uint32_t texelBytes(VkFormat format) {
   switch (format) {
-    case VK_FORMAT_R16_SFLOAT: return 2;
+    case VK_FORMAT_R16_SFLOAT:
+      return 2;
     case VK_FORMAT_R32_SFLOAT:
     case VK_FORMAT_R32_UINT:
     case VK_FORMAT_R16G16_SFLOAT:
     case VK_FORMAT_D32_SFLOAT:
-    case VK_FORMAT_R8G8B8A8_UNORM: return 4;
+    case VK_FORMAT_R8G8B8A8_UNORM:
+      return 4;
     case VK_FORMAT_R16G16B16A16_SFLOAT:
     case VK_FORMAT_R32G32_SFLOAT:
     case VK_FORMAT_R32G32_UINT:
-    case VK_FORMAT_R16G16B16A16_SNORM: return 8;
-    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
-    default: return 0;
+    case VK_FORMAT_R16G16B16A16_SNORM:
+      return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      return 16;
+    default:
+      return 0;
   }
 }
 
-} // namespace
+}  // namespace
 
 void unexpose(ImageF& image, float exposure) {
   for (size_t i = 0; i < image.rgba.size(); ++i)
@@ -79,8 +93,8 @@ void summarisePasses(const std::vector<std::string>& order, const std::map<std::
 }
 
 std::optional<Renderer::Impl::AovSource> Renderer::Impl::resolveAov(const graph::RenderGraph& graph, const GBuffer& gb,
-                                                                     const FrameImages& images,
-                                                                     const std::string& name) const {
+                                                                    const FrameImages& images,
+                                                                    const std::string& name) const {
   // The names of earlier releases (aovNames()) are aliases of the images they always meant; the
   // visibility arrays hold one layer per shadowed light.
   const std::map<std::string, std::pair<graph::ImageHandle, uint32_t>> aliases = {
@@ -169,11 +183,11 @@ void Renderer::Impl::addReadbacks(graph::RenderGraph& graph, const GBuffer& gb, 
     const rhi::Image* imported = graph.importedImage(a->image);
     if (imported && neutral.holds(*imported))
       log::info("AOV '{}': its effect records no pass this frame; the image is the constant lighting reads", name);
-    r.aovReadback.push_back(Run::AovReadback{name, d.format, d.width, d.height, a->layer,
-                                             rhi::Buffer(ctx, size_t(d.width) * d.height * texelBytes(d.format) * d.layers,
-                                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback,
-                                                         "aov-readback"),
-                                             (graph.imageTags(a->image) & kRadianceImage) != 0});
+    r.aovReadback.push_back(
+        Run::AovReadback{name, d.format, d.width, d.height, a->layer,
+                         rhi::Buffer(ctx, size_t(d.width) * d.height * texelBytes(d.format) * d.layers,
+                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "aov-readback"),
+                         (graph.imageTags(a->image) & kRadianceImage) != 0});
     r.aovStates.emplace_back();
     sources.push_back(a->image);
   }
@@ -189,7 +203,6 @@ RenderOutput Renderer::Impl::endRun() {
   run.reset();
   return out;
 }
-
 
 void Renderer::Impl::readImages(RenderOutput& out) {
   Run& r = *run;
@@ -221,8 +234,9 @@ void Renderer::Impl::readImages(RenderOutput& out) {
 
 void Renderer::Impl::copyToOutput(graph::RenderGraph& graph, graph::ImageHandle ldr) {
   const rhi::ImageDesc& d = graph.imageDesc(ldr);
-  const rhi::ImageDesc desc{d.format, d.width, d.height, 1,
-                            VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT};
+  const rhi::ImageDesc desc{
+      d.format, d.width, d.height, 1,
+      VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT};
   if (!output || !(output.desc() == desc)) {
     output = rhi::Image(ctx, desc, "output");
     outputState = {};
@@ -253,4 +267,4 @@ void Renderer::Impl::copyToOutput(graph::RenderGraph& graph, graph::ImageHandle 
       [](graph::PassContext&) {});
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

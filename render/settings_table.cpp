@@ -39,7 +39,8 @@ Status checkChoice(const Setting& s, std::string_view text) {
 // Entries by kind: each binds a RenderSettings member.
 Setting onOff(std::string name, std::string group, std::string help, bool RenderSettings::*field,
               uint32_t uses = kUseAll, bool restarts = true) {
-  Setting s{std::move(name), SettingKind::Switch, std::move(help), {"on", "off"}, 0, 0, std::move(group), uses, restarts};
+  Setting s{std::move(name), SettingKind::Switch, std::move(help), {"on", "off"}, 0, 0, std::move(group), uses,
+            restarts};
   s.get = [field](const RenderSettings& r) { return std::string(r.*field ? "on" : "off"); };
   s.set = [field, s](RenderSettings& r, std::string_view t) -> Status {
     if (Status c = checkChoice(s, t); !c) return c;
@@ -106,13 +107,19 @@ std::vector<Setting> makeTable() {
                      "Lights with their own shadow layer; a scene with more lights picks one light per pixel by "
                      "importance instead",
                      &RenderSettings::shadowLights, 0, 8, renderView));
-  t.push_back(onOff("ao", "Effects", "Ray-traced ambient occlusion of ambient and environment light",
-                    &RenderSettings::ao));
+  t.push_back(
+      onOff("ao", "Effects", "Ray-traced ambient occlusion of ambient and environment light", &RenderSettings::ao));
   {
     // 0 (the default) means the scene-relative radius; RenderSettings keeps that as a negative value.
-    Setting s{"ao-radius", SettingKind::Real,
+    Setting s{"ao-radius",
+              SettingKind::Real,
               "AO ray length in scene units; 0: 0.1 x the scene's bounding-box diagonal",
-              {}, 0.0, 1e9, "Effects", kUseAll, true};
+              {},
+              0.0,
+              1e9,
+              "Effects",
+              kUseAll,
+              true};
     s.get = [](const RenderSettings& r) { return r.aoRadius > 0.0f ? realText(r.aoRadius) : std::string("0"); };
     s.set = [s](RenderSettings& r, std::string_view text) -> Status {
       double v = 0;
@@ -123,10 +130,16 @@ std::vector<Setting> makeTable() {
     t.push_back(std::move(s));
   }
   {
-    Setting s{"indirect", SettingKind::Choice,
+    Setting s{"indirect",
+              SettingKind::Choice,
               "One-bounce ray-traced indirect diffuse: on, off or auto (on for builtin:whitted and builtin:cornell, "
               "off otherwise)",
-              {"auto", "on", "off"}, 0, 0, "Effects", kUseAll, true};
+              {"auto", "on", "off"},
+              0,
+              0,
+              "Effects",
+              kUseAll,
+              true};
     s.get = [](const RenderSettings& r) { return std::string(!r.indirect ? "auto" : *r.indirect ? "on" : "off"); };
     s.set = [s](RenderSettings& r, std::string_view text) -> Status {
       if (Status c = checkChoice(s, text); !c) return c;
@@ -154,7 +167,7 @@ std::vector<Setting> makeTable() {
   return t;
 }
 
-} // namespace
+}  // namespace
 
 std::string Setting::defaultText() const { return get(RenderSettings{}); }
 
@@ -166,8 +179,10 @@ std::string Setting::typeText() const {
       for (const std::string& c : choices) t += (t.empty() ? "" : "|") + c;
       return t;
     }
-    case SettingKind::Integer: return fmt::format("{}..{}", int64_t(min), int64_t(max));
-    case SettingKind::Real: return realText(min) + ".." + (max >= 1e9 ? std::string("") : realText(max));
+    case SettingKind::Integer:
+      return fmt::format("{}..{}", int64_t(min), int64_t(max));
+    case SettingKind::Real:
+      return realText(min) + ".." + (max >= 1e9 ? std::string("") : realText(max));
   }
   return "";
 }
@@ -177,7 +192,7 @@ std::vector<Setting>& passSettings() {
   static std::vector<Setting> settings;  // filled by PassSetting objects during static initialisation
   return settings;
 }
-} // namespace
+}  // namespace
 
 PassSetting::PassSetting(Setting setting) { passSettings().push_back(std::move(setting)); }
 
@@ -222,4 +237,4 @@ const Setting* findSetting(std::string_view name) {
   return nullptr;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -27,7 +27,7 @@ enum SettingUse : uint32_t { kUseRender = 1u, kUseView = 2u, kUseBench = 4u, kUs
 struct Setting {
   std::string name;  // "ao": the option --ao, the JSON key, the panel's label
   SettingKind kind = SettingKind::Switch;
-  std::string help;  // for --help and the panel's tooltip
+  std::string help;                  // for --help and the panel's tooltip
   std::vector<std::string> choices;  // Switch: {"on", "off"}; Choice: its names
   double min = 0.0, max = 0.0;       // Integer and Real: the accepted range
   std::string group;                 // the panel's section: "Render" or "Effects"
@@ -61,4 +61,4 @@ Setting passSwitch(std::string name, std::string group, std::string help, bool d
 // The value of a pass file's switch (its default when never set).
 bool passSwitchOn(const RenderSettings& settings, std::string_view name);
 
-} // namespace rayster::render
+}  // namespace rayster::render

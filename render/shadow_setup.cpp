@@ -34,7 +34,7 @@ gpu::ShadowView perspectiveView(glm::vec3 eye, glm::vec3 dir, glm::vec3 up, floa
   return v;
 }
 
-} // namespace
+}  // namespace
 
 std::vector<float> cascadeSplits(float nearPlane, float farPlane, uint32_t count, float lambda) {
   std::vector<float> ends(count);
@@ -72,7 +72,8 @@ ShadowAtlas planShadowAtlas(const scene::Scene& scene, scene::Aabb bounds, const
 
   std::vector<gpu::ShadowView> views;
   std::vector<glm::vec4>& rays = atlas.lightRays;
-  const uint32_t count = std::min<uint32_t>(uint32_t(scene.lights.size()), std::min(shadowLights, gpu::kMaxShadowLights));
+  const uint32_t count =
+      std::min<uint32_t>(uint32_t(scene.lights.size()), std::min(shadowLights, gpu::kMaxShadowLights));
   for (uint32_t li = 0; li < count; ++li) {
     const scene::Light& light = scene.lights[li];
     gpu::ShadowLight& sl = s.lights[li];
@@ -111,9 +112,9 @@ ShadowAtlas planShadowAtlas(const scene::Scene& scene, scene::Aabb bounds, const
         zMax += 0.01f * diagonal;
         gpu::ShadowView v{};
         // Reversed Z: glm::ortho maps -near → 0 and -far → 1, so swap the planes.
-        v.clipFromWorld = glm::ortho(snapped.x - radius, snapped.x + radius, snapped.y - radius, snapped.y + radius,
-                                     zMax, zMin) *
-                          view;
+        v.clipFromWorld =
+            glm::ortho(snapped.x - radius, snapped.x + radius, snapped.y - radius, snapped.y + radius, zMax, zMin) *
+            view;
         v.nearPlane = zMin;
         v.farPlane = zMax;
         v.texelWorld = texel;
@@ -161,4 +162,4 @@ ShadowAtlas planShadowAtlas(const scene::Scene& scene, scene::Aabb bounds, const
   return atlas;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -11,10 +11,10 @@
 namespace rayster::render {
 
 // Tunables of the shadow maps, each with its reason.
-inline constexpr uint32_t kShadowTileSize = 512;      // texels per tile side: sharp at test sizes, cheap on lavapipe
-inline constexpr uint32_t kShadowAtlasColumns = 8;     // tiles per atlas row
-inline constexpr float kCascadeSplitLambda = 0.75f;   // practical split scheme: 0 uniform, 1 logarithmic
-inline constexpr float kShadowPcfRadius = 1.5f;       // PCF radius in texels: a soft edge a few texels wide
+inline constexpr uint32_t kShadowTileSize = 512;     // texels per tile side: sharp at test sizes, cheap on lavapipe
+inline constexpr uint32_t kShadowAtlasColumns = 8;   // tiles per atlas row
+inline constexpr float kCascadeSplitLambda = 0.75f;  // practical split scheme: 0 uniform, 1 logarithmic
+inline constexpr float kShadowPcfRadius = 1.5f;      // PCF radius in texels: a soft edge a few texels wide
 
 struct ShadowAtlas {
   gpu::ShadowSetup setup{};
@@ -42,4 +42,4 @@ inline ShadowAtlas planShadowAtlas(const scene::Scene& scene, const scene::Camer
 // View-space distances where the cascades end (practical split scheme between near and far).
 std::vector<float> cascadeSplits(float nearPlane, float farPlane, uint32_t count, float lambda);
 
-} // namespace rayster::render
+}  // namespace rayster::render

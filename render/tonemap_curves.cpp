@@ -44,4 +44,4 @@ glm::vec3 applyTonemapper(Tonemapper t, glm::vec3 c) {
   return t == Tonemapper::Neutral ? pbrNeutral(c) : acesFitted(c);
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -29,4 +29,4 @@ inline constexpr float kNeutralF90 = 0.04f;
 inline constexpr float kNeutralStartCompression = 0.8f - kNeutralF90;
 inline constexpr float kNeutralDesaturation = 0.15f;
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -60,7 +60,7 @@ void asBuildBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 dstStage, VkAcces
 
 VkDeviceSize alignUp(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
 
-} // namespace
+}  // namespace
 
 std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std::vector<BlasGeometry>> meshes,
                                                AccelBuildStats* stats) {
@@ -173,8 +173,9 @@ std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std
     vkCmdCopyAccelerationStructureKHR(cmd, &copy);
     if (stats) stats->compactedBytes += compacted[k];
   }
-  asBuildBarrier(cmd, VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR | VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR,
-                 VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR);
+  asBuildBarrier(
+      cmd, VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR | VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR,
+      VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR);
   cmd.submitAndWait();
   return result;  // `built` (uncompacted) is retired here
 }
@@ -183,7 +184,8 @@ namespace {
 VkAccelerationStructureBuildGeometryInfoKHR tlasBuildInfo(const VkAccelerationStructureGeometryKHR* geo) {
   VkAccelerationStructureBuildGeometryInfoKHR info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
   info.type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR;
-  info.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR | VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_UPDATE_BIT_KHR;
+  info.flags =
+      VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR | VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_UPDATE_BIT_KHR;
   info.geometryCount = 1;
   info.pGeometries = geo;
   return info;
@@ -196,22 +198,22 @@ VkAccelerationStructureGeometryKHR tlasGeometry(VkDeviceAddress instances) {
   geo.geometry.instances.data.deviceAddress = instances;
   return geo;
 }
-} // namespace
+}  // namespace
 
 void Tlas::allocate(uint32_t count) {
   count_ = count;
   const size_t bytes = std::max<size_t>(count, 1) * sizeof(VkAccelerationStructureInstanceKHR);
-  instances_ = Buffer(*ctx_, bytes,
-                      VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
-                          VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                      MemoryUsage::Upload, "tlas-instances");
+  instances_ = Buffer(
+      *ctx_, bytes,
+      VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+      MemoryUsage::Upload, "tlas-instances");
   VkAccelerationStructureGeometryKHR geo = tlasGeometry(instances_.address());
   VkAccelerationStructureBuildGeometryInfoKHR info = tlasBuildInfo(&geo);
   VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
   vkGetAccelerationStructureBuildSizesKHR(ctx_->device(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info,
                                           &count, &sizes);
-  as_ = createAccelerationStructure(*ctx_, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, sizes.accelerationStructureSize,
-                                    "tlas");
+  as_ = createAccelerationStructure(*ctx_, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR,
+                                    sizes.accelerationStructureSize, "tlas");
   const VkDeviceSize align = std::max<uint32_t>(ctx_->caps().minScratchOffsetAlignment, 1);
   scratch_ = Buffer(*ctx_, std::max(sizes.buildScratchSize, sizes.updateScratchSize) + align,
                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "tlas-scratch");
@@ -250,4 +252,4 @@ bool Tlas::prepare(std::span<const VkAccelerationStructureInstanceKHR> instances
   return refit;
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -38,14 +38,14 @@ AccelerationStructure createAccelerationStructure(Context& ctx, VkAccelerationSt
                                                   const char* name);
 
 struct BlasGeometry {
-  uint32_t aabbCount = 0;             // > 0: procedural geometry, VkAabbPositionsKHR at aabbAddress
+  uint32_t aabbCount = 0;  // > 0: procedural geometry, VkAabbPositionsKHR at aabbAddress
   VkDeviceAddress aabbAddress = 0;
   VkDeviceAddress vertexAddress = 0;  // R32G32B32 positions at offset 0 of each vertex
   uint32_t vertexStride = 0;
   uint32_t vertexCount = 0;
-  VkDeviceAddress indexAddress = 0;   // uint32 triangle list
+  VkDeviceAddress indexAddress = 0;  // uint32 triangle list
   uint32_t indexCount = 0;
-  bool opaque = true;                 // false: any-hit shaders run (alpha MASK)
+  bool opaque = true;  // false: any-hit shaders run (alpha MASK)
 };
 
 struct AccelBuildStats {
@@ -67,7 +67,8 @@ class Tlas {
  public:
   Tlas() = default;
   // Builds and waits.
-  static Tlas build(Context& ctx, std::span<const VkAccelerationStructureInstanceKHR> instances, AccelBuildStats* stats);
+  static Tlas build(Context& ctx, std::span<const VkAccelerationStructureInstanceKHR> instances,
+                    AccelBuildStats* stats);
   // A frame's update, in two steps. prepare() writes the instances (host side, while the frame is
   // recorded) and, when their count changed, allocates a new structure (so handle() changes before any
   // pass binds it); returns true for a refit. record() records the build or refit: the render graph's
@@ -87,4 +88,4 @@ class Tlas {
   uint32_t count_ = 0;
 };
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -53,4 +53,4 @@ uint32_t BindlessTextures::add(VkImageView view, VkSampler sampler) {
   return count_++;
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -33,4 +33,4 @@ class BindlessTextures {
   uint32_t count_ = 0;
 };
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -79,4 +79,4 @@ std::vector<TimestampPool::Timing> TimestampPool::read() {
   return out;
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

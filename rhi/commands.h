@@ -64,4 +64,4 @@ class TimestampPool {
   std::vector<std::string> names_;
 };
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

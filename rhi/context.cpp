@@ -1,9 +1,9 @@
 #include "rhi/context.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <atomic>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "core/log.h"
@@ -57,8 +57,10 @@ bool rayTracingDisabledForTesting() {
 DeviceInfo describe(VkPhysicalDevice pd) {
   DeviceInfo info;
   info.handle = pd;
-  VkPhysicalDeviceRayTracingPipelinePropertiesKHR rtProps{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR};
-  VkPhysicalDeviceAccelerationStructurePropertiesKHR asProps{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+  VkPhysicalDeviceRayTracingPipelinePropertiesKHR rtProps{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR};
+  VkPhysicalDeviceAccelerationStructurePropertiesKHR asProps{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   props.pNext = &driver;
@@ -100,7 +102,8 @@ DeviceInfo describe(VkPhysicalDevice pd) {
   }
 
   if (VK_API_VERSION_MINOR(info.apiVersion) < 3 && VK_API_VERSION_MAJOR(info.apiVersion) == 1)
-    info.unsuitableReason = "supports Vulkan 1." + std::to_string(VK_API_VERSION_MINOR(info.apiVersion)) + ", Rayster needs 1.3";
+    info.unsuitableReason =
+        "supports Vulkan 1." + std::to_string(VK_API_VERSION_MINOR(info.apiVersion)) + ", Rayster needs 1.3";
   else if (!hasExtension(exts, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
     info.unsuitableReason = "lacks VK_KHR_push_descriptor";
   return info;
@@ -150,8 +153,9 @@ Result<VkInstance> createInstance(bool validation, bool labels, bool& debugUtils
       return std::strcmp(l.layerName, "VK_LAYER_KHRONOS_validation") == 0;
     });
     if (!found)
-      return makeError(ExitCode::NoDevice, "validation was requested but VK_LAYER_KHRONOS_validation is not installed "
-                                           "(apt-get install vulkan-validationlayers)");
+      return makeError(ExitCode::NoDevice,
+                       "validation was requested but VK_LAYER_KHRONOS_validation is not installed "
+                       "(apt-get install vulkan-validationlayers)");
     layers.push_back("VK_LAYER_KHRONOS_validation");
   }
 
@@ -190,15 +194,20 @@ std::vector<DeviceInfo> enumerate(VkInstance instance) {
   return out;
 }
 
-} // namespace
+}  // namespace
 
 const char* DeviceInfo::typeName() const {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
-    default: return "other";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return "CPU";
+    default:
+      return "other";
   }
 }
 
@@ -223,7 +232,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
   ctx->validation_ = options.validation;
   if (options.validation && ctx->debugUtils_) {
     VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-    mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
+    mci.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
     mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
     mci.pfnUserCallback = debugCallback;
     VK_CHECK(vkCreateDebugUtilsMessengerEXT(ctx->instance_, &mci, nullptr, &ctx->messenger_));
@@ -254,8 +264,9 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
                      "{} has no ray-tracing pipelines (VK_KHR_ray_tracing_pipeline and VK_KHR_acceleration_structure); "
                      "{}",
                      ctx->info_.name,
-                     rayTracingDisabledForTesting() ? "RAYSTER_DISABLE_RT=1 hides it"
-                                                    : "on lavapipe install mesa-vulkan-drivers from bookworm-backports");
+                     rayTracingDisabledForTesting()
+                         ? "RAYSTER_DISABLE_RT=1 hides it"
+                         : "on lavapipe install mesa-vulkan-drivers from bookworm-backports");
 
   // One queue that does graphics, compute and transfer: enough for a frame recorded in order.
   uint32_t qn = 0;
@@ -281,9 +292,11 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
   VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   vkGetPhysicalDeviceFeatures2(ctx->info_.handle, &supported);
 
-  VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtFeatures{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+  VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtFeatures{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
   rtFeatures.rayTracingPipeline = VK_TRUE;
-  VkPhysicalDeviceAccelerationStructureFeaturesKHR asFeatures{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR asFeatures{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
   asFeatures.accelerationStructure = VK_TRUE;
   asFeatures.pNext = &rtFeatures;
   VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
@@ -367,7 +380,8 @@ uint64_t Context::submit(VkCommandBuffer cmd) { return submit(cmd, VK_NULL_HANDL
 uint64_t Context::submit(VkCommandBuffer cmd, VkSemaphore wait, VkSemaphore signalBinary) {
   VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cbi.commandBuffer = cmd;
-  VkSemaphoreSubmitInfo signals[2] = {{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO}, {VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO}};
+  VkSemaphoreSubmitInfo signals[2] = {{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO},
+                                      {VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO}};
   signals[0].semaphore = timeline_;
   signals[0].value = ++submitted_;
   signals[0].stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
@@ -402,8 +416,7 @@ void Context::retire(std::function<void()> destroy) { garbage_.emplace_back(subm
 void Context::collectGarbage() {
   uint64_t done = 0;
   VK_CHECK(vkGetSemaphoreCounterValue(device_, timeline_, &done));
-  auto keep = std::stable_partition(garbage_.begin(), garbage_.end(),
-                                    [done](const auto& g) { return g.first > done; });
+  auto keep = std::stable_partition(garbage_.begin(), garbage_.end(), [done](const auto& g) { return g.first > done; });
   for (auto it = keep; it != garbage_.end(); ++it) it->second();
   garbage_.erase(keep, garbage_.end());
 }
@@ -429,4 +442,4 @@ void Context::endLabel(VkCommandBuffer cmd) const {
   vkCmdEndDebugUtilsLabelEXT(cmd);
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

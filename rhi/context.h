@@ -40,7 +40,7 @@ struct DeviceInfo {
   std::string driverInfo;
   uint64_t deviceLocalBytes = 0;
   Capabilities caps;
-  std::string unsuitableReason; // empty when Rayster can run on it at all
+  std::string unsuitableReason;  // empty when Rayster can run on it at all
   PipelineCacheKey cacheKey;     // vendor, device and pipelineCacheUUID (rhi/pipeline_cache.h)
   const char* typeName() const;
 };
@@ -118,4 +118,4 @@ class Context {
   std::unique_ptr<PipelineCache> pipelineCache_;
 };
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -26,7 +26,9 @@ MemoryAllocator::~MemoryAllocator() {
 uint32_t MemoryAllocator::findMemoryType(uint32_t typeBits, MemoryUsage usage) const {
   VkMemoryPropertyFlags required = 0, preferred = 0;
   switch (usage) {
-    case MemoryUsage::GpuOnly: preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT; break;
+    case MemoryUsage::GpuOnly:
+      preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+      break;
     case MemoryUsage::Upload:
       required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
       break;
@@ -43,7 +45,8 @@ uint32_t MemoryAllocator::findMemoryType(uint32_t typeBits, MemoryUsage usage) c
     if ((f & preferred) == preferred) return i;
     if (fallback == UINT32_MAX) fallback = i;
   }
-  if (fallback == UINT32_MAX) vkFailure(VK_ERROR_OUT_OF_DEVICE_MEMORY, "findMemoryType: no compatible memory type", __FILE__, __LINE__);
+  if (fallback == UINT32_MAX)
+    vkFailure(VK_ERROR_OUT_OF_DEVICE_MEMORY, "findMemoryType: no compatible memory type", __FILE__, __LINE__);
   return fallback;
 }
 
@@ -160,4 +163,4 @@ MemoryStats MemoryAllocator::stats() const {
   return stats_;
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -50,8 +50,8 @@ struct MemoryStats {
 
 class MemoryAllocator {
  public:
-  static constexpr VkDeviceSize kBlockSize = 64ull << 20;       // few driver allocations, modest waste
-  static constexpr VkDeviceSize kDedicatedThreshold = 16ull << 20; // big targets/AS get their own memory
+  static constexpr VkDeviceSize kBlockSize = 64ull << 20;           // few driver allocations, modest waste
+  static constexpr VkDeviceSize kDedicatedThreshold = 16ull << 20;  // big targets/AS get their own memory
 
   explicit MemoryAllocator(Context& ctx);
   ~MemoryAllocator();
@@ -81,4 +81,4 @@ class MemoryAllocator {
   mutable std::mutex mutex_;
 };
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -44,7 +44,7 @@ std::filesystem::path cacheFolder() {
   return {};
 }
 
-} // namespace
+}  // namespace
 
 bool pipelineCacheUsable(std::span<const uint8_t> data, const PipelineCacheKey& key) {
   if (data.size() < kHeaderBytes) return false;
@@ -116,4 +116,4 @@ void PipelineCache::save() const {
   }
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

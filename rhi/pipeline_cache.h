@@ -53,4 +53,4 @@ class PipelineCache {
   size_t loadedBytes_ = 0;
 };
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -31,4 +31,4 @@ const RayTracingPipeline& PipelineLibrary::rayTracing(std::string_view key,
   return static_cast<const RayTracingPipeline&>(*pipelines_.emplace(std::string(key), std::move(p)).first->second);
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

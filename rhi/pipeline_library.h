@@ -36,4 +36,4 @@ class PipelineLibrary {
   std::map<std::string, std::unique_ptr<Pipeline>, std::less<>> pipelines_;  // stable addresses
 };
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -67,7 +67,8 @@ void PipelineBuilder::makeLayout(Context& ctx, Pipeline& p, VkDescriptorSetLayou
   for (const ShaderBinding& x : p.interface_.bindings) {
     if (x.set > 1)
       fatal((p.name_ + ": descriptor '" + x.name + "' is in set " + std::to_string(x.set) +
-             "; pipelines have set 0 (the pass's) and set 1 (global)").c_str(),
+             "; pipelines have set 0 (the pass's) and set 1 (global)")
+                .c_str(),
             __FILE__, __LINE__);
     if (x.set == 0) {
       if (x.count == 0)
@@ -251,8 +252,12 @@ void DescriptorWriter::push(VkCommandBuffer cmd, const Pipeline& pipeline) {
         w.pNext = &e.as;
         break;
       case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
-      case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER: w.pBufferInfo = &e.buffer; break;
-      default: w.pImageInfo = &e.image; break;
+      case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+        w.pBufferInfo = &e.buffer;
+        break;
+      default:
+        w.pImageInfo = &e.image;
+        break;
     }
     writes.push_back(w);
   }
@@ -260,4 +265,4 @@ void DescriptorWriter::push(VkCommandBuffer cmd, const Pipeline& pipeline) {
   entries_.clear();
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -108,4 +108,4 @@ struct PipelineBuilder {
   }
 };
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

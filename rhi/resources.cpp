@@ -199,4 +199,4 @@ Buffer createBufferWithData(Context& ctx, std::span<const std::byte> bytes, VkBu
   return buffer;
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -100,12 +100,11 @@ class Sampler {
 };
 
 // Creates a device-local buffer holding `bytes`, uploaded through a staging buffer (waits).
-Buffer createBufferWithData(Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage,
-                            const char* name);
+Buffer createBufferWithData(Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage, const char* name);
 
 template <class T>
 std::span<const std::byte> asBytes(std::span<const T> s) {
   return std::as_bytes(s);
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -8,7 +8,7 @@
 namespace rayster::rhi {
 namespace {
 uint32_t alignUp(uint32_t v, uint32_t a) { return (v + a - 1) / a * a; }
-} // namespace
+}  // namespace
 
 SbtLayout computeSbtLayout(uint32_t handleSize, uint32_t handleAlignment, uint32_t baseAlignment, uint32_t missCount,
                            uint32_t hitCount) {
@@ -34,8 +34,7 @@ RayTracingPipeline::RayTracingPipeline(Context& ctx, const RayTracingPipelineDes
   for (const HitGroup& h : d.hitGroups) {
     if (!h.closestHit.empty()) PipelineBuilder::addStage(*this, h.closestHit, VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR);
     if (!h.anyHit.empty()) PipelineBuilder::addStage(*this, h.anyHit, VK_SHADER_STAGE_ANY_HIT_BIT_KHR);
-    if (!h.intersection.empty())
-      PipelineBuilder::addStage(*this, h.intersection, VK_SHADER_STAGE_INTERSECTION_BIT_KHR);
+    if (!h.intersection.empty()) PipelineBuilder::addStage(*this, h.intersection, VK_SHADER_STAGE_INTERSECTION_BIT_KHR);
   }
   PipelineBuilder::makeLayout(ctx, *this, d.globalSet);
 
@@ -86,8 +85,8 @@ RayTracingPipeline::RayTracingPipeline(Context& ctx, const RayTracingPipelineDes
   ctx.setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(handle), std::string(d.raygen).c_str());
 
   const uint32_t missCount = uint32_t(d.miss.size()), hitCount = uint32_t(d.hitGroups.size());
-  sbtLayout_ = computeSbtLayout(caps.shaderGroupHandleSize, caps.shaderGroupHandleAlignment, caps.shaderGroupBaseAlignment,
-                             missCount, hitCount);
+  sbtLayout_ = computeSbtLayout(caps.shaderGroupHandleSize, caps.shaderGroupHandleAlignment,
+                                caps.shaderGroupBaseAlignment, missCount, hitCount);
   std::vector<uint8_t> handles(groups.size() * sbtLayout_.handleSize);
   VK_CHECK(vkGetRayTracingShaderGroupHandlesKHR(ctx.device(), handle, 0, uint32_t(groups.size()), handles.size(),
                                                 handles.data()));
@@ -118,4 +117,4 @@ void RayTracingPipeline::trace(VkCommandBuffer cmd, uint32_t width, uint32_t hei
   vkCmdTraceRaysKHR(cmd, &raygen, &miss, &hit, &callable, width, height, depth);
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -49,4 +49,4 @@ class RayTracingPipeline : public Pipeline {
   SbtLayout sbtLayout_;
 };
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -52,7 +52,7 @@ struct Member {
 struct Ids {
   std::unordered_map<uint32_t, std::string> names;
   std::unordered_map<uint32_t, Type> types;
-  std::unordered_map<uint32_t, uint32_t> constants;  // 32-bit integer constants (array lengths)
+  std::unordered_map<uint32_t, uint32_t> constants;                 // 32-bit integer constants (array lengths)
   std::unordered_map<uint32_t, std::vector<uint32_t>> decorations;  // id -> decoration words (pairs flattened)
   std::unordered_map<uint32_t, uint32_t> set, binding, arrayStride;
   std::unordered_map<uint32_t, std::vector<Member>> members;
@@ -85,11 +85,15 @@ uint32_t typeSize(const Ids& ids, uint32_t id, uint32_t matrixStride = 0) {
   if (it == ids.types.end()) return 0;
   const Type& t = it->second;
   switch (t.op) {
-    case OpTypeBool: return 4;
+    case OpTypeBool:
+      return 4;
     case OpTypeInt:
-    case OpTypeFloat: return t.operands[0] / 8;
-    case OpTypeVector: return t.operands[1] * typeSize(ids, t.operands[0]);
-    case OpTypeMatrix: return t.operands[1] * (matrixStride ? matrixStride : typeSize(ids, t.operands[0]));
+    case OpTypeFloat:
+      return t.operands[0] / 8;
+    case OpTypeVector:
+      return t.operands[1] * typeSize(ids, t.operands[0]);
+    case OpTypeMatrix:
+      return t.operands[1] * (matrixStride ? matrixStride : typeSize(ids, t.operands[0]));
     case OpTypeArray: {
       auto len = ids.constants.find(t.operands[1]);
       auto stride = ids.arrayStride.find(id);
@@ -105,7 +109,8 @@ uint32_t typeSize(const Ids& ids, uint32_t id, uint32_t matrixStride = 0) {
       }
       return size;
     }
-    default: return 0;
+    default:
+      return 0;
   }
 }
 
@@ -114,7 +119,7 @@ bool fail(std::string* error, std::string message) {
   return false;
 }
 
-} // namespace
+}  // namespace
 
 const ShaderBinding* ShaderInterface::find(std::string_view name, uint32_t set) const {
   for (const ShaderBinding& b : bindings)
@@ -147,7 +152,9 @@ std::optional<ShaderInterface> reflectSpirv(std::span<const uint32_t> words, VkS
     }
     const std::span<const uint32_t> w = words.subspan(at + 1, count - 1);  // operands
     switch (op) {
-      case OpName: ids.names[w[0]] = literalString(w.subspan(1)); break;
+      case OpName:
+        ids.names[w[0]] = literalString(w.subspan(1));
+        break;
       case OpDecorate:
         ids.decorations[w[0]].push_back(w[1]);
         if (w[1] == DescriptorSet) ids.set[w[0]] = w[2];
@@ -164,7 +171,9 @@ std::optional<ShaderInterface> reflectSpirv(std::span<const uint32_t> words, VkS
       case OpConstant:
         ids.constants[w[1]] = w[2];  // (result type, id, value): only the low word matters for lengths
         break;
-      case OpVariable: ids.variables.push_back({w[1], w[0], w[2]}); break;
+      case OpVariable:
+        ids.variables.push_back({w[1], w[0], w[2]});
+        break;
       default:
         if ((op >= OpTypeBool && op <= OpTypePointer) || op == OpTypeAccelerationStructureKHR)
           ids.types[w[0]] = {op, std::vector<uint32_t>(w.begin() + 1, w.end())};
@@ -204,9 +213,15 @@ std::optional<ShaderInterface> reflectSpirv(std::span<const uint32_t> words, VkS
     const Type& t = ids.types[type];
     if (b.name.empty()) b.name = ids.names[type];  // an anonymous block: its type's name
     switch (t.op) {
-      case OpTypeSampledImage: b.type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER; break;
-      case OpTypeSampler: b.type = VK_DESCRIPTOR_TYPE_SAMPLER; break;
-      case OpTypeAccelerationStructureKHR: b.type = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR; break;
+      case OpTypeSampledImage:
+        b.type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        break;
+      case OpTypeSampler:
+        b.type = VK_DESCRIPTOR_TYPE_SAMPLER;
+        break;
+      case OpTypeAccelerationStructureKHR:
+        b.type = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
+        break;
       case OpTypeImage: {
         const uint32_t dim = t.operands[1], sampled = t.operands[5];
         if (dim == kDimBuffer)
@@ -221,7 +236,8 @@ std::optional<ShaderInterface> reflectSpirv(std::span<const uint32_t> words, VkS
         else if (ids.has(type, Block))
           b.type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
         break;
-      default: break;
+      default:
+        break;
     }
     if (b.type == VK_DESCRIPTOR_TYPE_MAX_ENUM) {
       fail(error, "descriptor '" + b.name + "' (set " + std::to_string(b.set) + ", binding " +
@@ -260,4 +276,4 @@ bool mergeInterface(ShaderInterface& into, const ShaderInterface& stage, std::st
   return true;
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

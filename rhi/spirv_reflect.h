@@ -44,4 +44,4 @@ std::optional<ShaderInterface> reflectSpirv(std::span<const uint32_t> words, VkS
 // one (set, binding) with different types or sizes are an error (returns false, sets `error`).
 bool mergeInterface(ShaderInterface& into, const ShaderInterface& stage, std::string* error = nullptr);
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -10,8 +10,7 @@ SubAllocator::SubAllocator(uint64_t size) : size_(size) {
 
 std::optional<uint64_t> SubAllocator::allocate(uint64_t size, uint64_t alignment) {
   RAYSTER_ASSERT(size > 0, "SubAllocator::allocate of 0 bytes");
-  RAYSTER_ASSERT(alignment > 0 && (alignment & (alignment - 1)) == 0,
-                 "SubAllocator alignment must be a power of two");
+  RAYSTER_ASSERT(alignment > 0 && (alignment & (alignment - 1)) == 0, "SubAllocator alignment must be a power of two");
   // Smallest ranges first (best fit), lowest offset among equal sizes so results are
   // deterministic. A range of size + alignment - 1 always fits, so the walk ends there at worst.
   for (auto it = freeBySize_.lower_bound({size, 0}); it != freeBySize_.end(); ++it) {
@@ -54,9 +53,7 @@ void SubAllocator::free(uint64_t offset) {
   addFree(start, end - start);
 }
 
-uint64_t SubAllocator::largestFreeRange() const {
-  return freeBySize_.empty() ? 0 : freeBySize_.rbegin()->first;
-}
+uint64_t SubAllocator::largestFreeRange() const { return freeBySize_.empty() ? 0 : freeBySize_.rbegin()->first; }
 
 void SubAllocator::addFree(uint64_t offset, uint64_t size) {
   freeByOffset_.emplace(offset, size);
@@ -68,4 +65,4 @@ void SubAllocator::removeFree(std::map<uint64_t, uint64_t>::iterator it) {
   freeByOffset_.erase(it);
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -35,9 +35,9 @@ class SubAllocator {
 
   uint64_t size_;
   uint64_t used_ = 0;
-  std::map<uint64_t, uint64_t> freeByOffset_;          // offset -> size, for coalescing
-  std::set<std::pair<uint64_t, uint64_t>> freeBySize_; // (size, offset), for best fit
-  std::map<uint64_t, uint64_t> allocations_;           // offset -> size
+  std::map<uint64_t, uint64_t> freeByOffset_;           // offset -> size, for coalescing
+  std::set<std::pair<uint64_t, uint64_t>> freeBySize_;  // (size, offset), for best fit
+  std::map<uint64_t, uint64_t> allocations_;            // offset -> size
 };
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

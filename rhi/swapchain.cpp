@@ -33,7 +33,7 @@ VkPresentModeKHR choosePresentMode(VkPhysicalDevice pd, VkSurfaceKHR surface, bo
   return VK_PRESENT_MODE_FIFO_KHR;
 }
 
-} // namespace
+}  // namespace
 
 Swapchain::Swapchain(Context& ctx, VkExtent2D size, bool vsync) : ctx_(ctx) {
   VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
@@ -75,7 +75,8 @@ void Swapchain::recreate(VkExtent2D size, bool vsync) {
   ci.imageExtent = size;
   ci.imageArrayLayers = 1;
   // Transfer dst: the frame is blitted in; transfer src: --screenshot reads the presented image.
-  ci.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  ci.imageUsage =
+      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   ci.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   ci.preTransform = caps.currentTransform;
   ci.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
@@ -135,4 +136,4 @@ bool Swapchain::present(uint32_t index) {
   return true;
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -48,4 +48,4 @@ class Swapchain {
   std::vector<VkSemaphore> renderDone_;  // one per image: presentation may hold it until reacquired
 };
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

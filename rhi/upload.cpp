@@ -32,7 +32,7 @@ void mipBarrier(VkCommandBuffer cmd, VkImage image, uint32_t mip, VkImageLayout 
 constexpr VkPipelineStageFlags2 kTransfer = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
 constexpr VkPipelineStageFlags2 kShaders = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
 
-} // namespace
+}  // namespace
 
 Image uploadImage(Context& ctx, ImageDesc desc, std::span<const std::byte> pixels, bool generateMips,
                   const char* name) {
@@ -75,4 +75,4 @@ Image uploadImage(Context& ctx, ImageDesc desc, std::span<const std::byte> pixel
   return image;
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

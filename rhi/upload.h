@@ -11,7 +11,6 @@ namespace rayster::rhi {
 class Context;
 
 // `desc.mips` is ignored: 1, or the full chain when `generateMips`. Ends in SHADER_READ_ONLY_OPTIMAL.
-Image uploadImage(Context& ctx, ImageDesc desc, std::span<const std::byte> pixels, bool generateMips,
-                  const char* name);
+Image uploadImage(Context& ctx, ImageDesc desc, std::span<const std::byte> pixels, bool generateMips, const char* name);
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -10,7 +10,9 @@ namespace rayster::rhi {
 
 const char* resultName(VkResult r) {
   switch (r) {
-#define RAYSTER_CASE(x) case x: return #x;
+#define RAYSTER_CASE(x) \
+  case x:               \
+    return #x;
     RAYSTER_CASE(VK_SUCCESS)
     RAYSTER_CASE(VK_NOT_READY)
     RAYSTER_CASE(VK_TIMEOUT)
@@ -37,7 +39,8 @@ const char* resultName(VkResult r) {
     RAYSTER_CASE(VK_OPERATION_DEFERRED_KHR)
     RAYSTER_CASE(VK_OPERATION_NOT_DEFERRED_KHR)
 #undef RAYSTER_CASE
-    default: return "VK_ERROR_UNKNOWN";
+    default:
+      return "VK_ERROR_UNKNOWN";
   }
 }
 
@@ -64,4 +67,4 @@ void vkFailure(VkResult r, const char* expr, const char* file, int line) {
   std::_Exit(static_cast<int>(code));
 }
 
-} // namespace rayster::rhi
+}  // namespace rayster::rhi

@@ -10,11 +10,10 @@ const char* resultName(VkResult result);
 // (the viewer shows it in its window); the process still exits with the documented code.
 using FatalHook = void (*)(const char* message);
 void setFatalHook(FatalHook hook);
-} // namespace rayster::rhi
+}  // namespace rayster::rhi
 
-#define VK_CHECK(expr)                                                    \
-  do {                                                                    \
-    VkResult vk_check_result_ = (expr);                                   \
-    if (vk_check_result_ < 0)                                             \
-      ::rayster::rhi::vkFailure(vk_check_result_, #expr, __FILE__, __LINE__); \
+#define VK_CHECK(expr)                                                                                \
+  do {                                                                                                \
+    VkResult vk_check_result_ = (expr);                                                               \
+    if (vk_check_result_ < 0) ::rayster::rhi::vkFailure(vk_check_result_, #expr, __FILE__, __LINE__); \
   } while (0)

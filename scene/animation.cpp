@@ -22,9 +22,9 @@ const glm::vec4& keyValue(const AnimationChannel& channel, size_t k) {
 // glTF 2.0 Appendix C: Hermite spline with the tangents scaled by the key interval.
 glm::vec4 hermite(const AnimationChannel& channel, size_t k, float s, float dt) {
   const glm::vec4& p0 = channel.values[3 * k + 1];
-  const glm::vec4 m0 = dt * channel.values[3 * k + 2];       // out-tangent of key k
+  const glm::vec4 m0 = dt * channel.values[3 * k + 2];  // out-tangent of key k
   const glm::vec4& p1 = channel.values[3 * (k + 1) + 1];
-  const glm::vec4 m1 = dt * channel.values[3 * (k + 1) + 0]; // in-tangent of key k + 1
+  const glm::vec4 m1 = dt * channel.values[3 * (k + 1) + 0];  // in-tangent of key k + 1
   const float s2 = s * s, s3 = s2 * s;
   return (2 * s3 - 3 * s2 + 1) * p0 + (s3 - 2 * s2 + s) * m0 + (-2 * s3 + 3 * s2) * p1 + (s3 - s2) * m1;
 }
@@ -34,7 +34,7 @@ bool wellFormed(const AnimationChannel& channel, size_t nodeCount) {
   return channel.node < nodeCount && !channel.times.empty() && channel.values.size() == per * channel.times.size();
 }
 
-} // namespace
+}  // namespace
 
 glm::mat4 SceneNode::parentFromNode() const {
   if (hasMatrix) return matrix;
@@ -49,38 +49,41 @@ glm::mat4 SceneNode::parentFromNode() const {
 glm::quat slerpShortest(const glm::quat& a, const glm::quat& b, float t) {
   glm::quat to = b;
   float cosTheta = glm::dot(a, b);
-  if (cosTheta < 0.0f) { // q and -q are the same rotation: take the short way round
+  if (cosTheta < 0.0f) {  // q and -q are the same rotation: take the short way round
     to = -b;
     cosTheta = -cosTheta;
   }
   // Nearly parallel: sin(theta) vanishes, and a normalised lerp is exact to float precision.
-  if (cosTheta > 0.9995f) return glm::normalize(glm::quat(a.w + t * (to.w - a.w), a.x + t * (to.x - a.x),
-                                                          a.y + t * (to.y - a.y), a.z + t * (to.z - a.z)));
+  if (cosTheta > 0.9995f)
+    return glm::normalize(
+        glm::quat(a.w + t * (to.w - a.w), a.x + t * (to.x - a.x), a.y + t * (to.y - a.y), a.z + t * (to.z - a.z)));
   const float theta = std::acos(std::min(cosTheta, 1.0f));
   const float sinTheta = std::sin(theta);
   const float wa = std::sin((1.0f - t) * theta) / sinTheta, wb = std::sin(t * theta) / sinTheta;
-  return glm::normalize(glm::quat(wa * a.w + wb * to.w, wa * a.x + wb * to.x, wa * a.y + wb * to.y,
-                                  wa * a.z + wb * to.z));
+  return glm::normalize(
+      glm::quat(wa * a.w + wb * to.w, wa * a.x + wb * to.x, wa * a.y + wb * to.y, wa * a.z + wb * to.z));
 }
 
 glm::vec4 sampleChannel(const AnimationChannel& channel, float timeSeconds) {
   const std::vector<float>& times = channel.times;
   const bool rotation = channel.path == AnimationChannel::Rotation;
   auto finish = [&](glm::vec4 v) { return rotation ? normalizedRotation(v) : v; };
-  if (!(timeSeconds > times.front())) return finish(keyValue(channel, 0)); // also NaN time
+  if (!(timeSeconds > times.front())) return finish(keyValue(channel, 0));  // also NaN time
   if (timeSeconds >= times.back()) return finish(keyValue(channel, times.size() - 1));
   // times[k] <= t < times[k + 1]
   const size_t k = size_t(std::upper_bound(times.begin(), times.end(), timeSeconds) - times.begin()) - 1;
   const float dt = times[k + 1] - times[k];
   const float s = std::clamp((timeSeconds - times[k]) / dt, 0.0f, 1.0f);
   switch (channel.interp) {
-    case AnimationChannel::Step: return finish(keyValue(channel, k));
+    case AnimationChannel::Step:
+      return finish(keyValue(channel, k));
     case AnimationChannel::Linear:
       if (rotation)
         return toXyzw(slerpShortest(toQuat(normalizedRotation(keyValue(channel, k))),
                                     toQuat(normalizedRotation(keyValue(channel, k + 1))), s));
       return glm::mix(keyValue(channel, k), keyValue(channel, k + 1), s);
-    case AnimationChannel::CubicSpline: return finish(hermite(channel, k, s, dt));
+    case AnimationChannel::CubicSpline:
+      return finish(hermite(channel, k, s, dt));
   }
   return finish(keyValue(channel, k));
 }
@@ -110,13 +113,19 @@ bool evaluateAnimations(Scene& scene, float timeSeconds, bool loop) {
   }
   for (const Animation& animation : scene.animations)
     for (const AnimationChannel& channel : animation.channels) {
-      if (!wellFormed(channel, scene.nodes.size())) continue; // validate() reports these
+      if (!wellFormed(channel, scene.nodes.size())) continue;  // validate() reports these
       SceneNode& node = scene.nodes[channel.node];
       const glm::vec4 v = sampleChannel(channel, timeSeconds);
       switch (channel.path) {
-        case AnimationChannel::Translation: node.translation = glm::vec3(v); break;
-        case AnimationChannel::Rotation: node.rotation = toQuat(v); break;
-        case AnimationChannel::Scale: node.scale = glm::vec3(v); break;
+        case AnimationChannel::Translation:
+          node.translation = glm::vec3(v);
+          break;
+        case AnimationChannel::Rotation:
+          node.rotation = toQuat(v);
+          break;
+        case AnimationChannel::Scale:
+          node.scale = glm::vec3(v);
+          break;
       }
     }
 
@@ -132,4 +141,4 @@ bool evaluateAnimations(Scene& scene, float timeSeconds, bool loop) {
   return changed;
 }
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

@@ -23,4 +23,4 @@ glm::quat slerpShortest(const glm::quat& a, const glm::quat& b, float t);
 // and worldFromObject of every instance with node >= 0.
 void updateWorldTransforms(Scene& scene);
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

@@ -77,7 +77,8 @@ Result<Scene> makeBuiltinScene(std::string_view name) {
     if (entry.name != base) continue;
     if (hasArgument && !entry.takesArgument)
       return makeError(ExitCode::BadInput, "built-in scene '{}' takes no parameter (got '{}')", entry.name, name);
-    Result<Scene> scene = entry.make(hasArgument ? std::optional<std::string_view>(bare.substr(colon + 1)) : std::nullopt);
+    Result<Scene> scene =
+        entry.make(hasArgument ? std::optional<std::string_view>(bare.substr(colon + 1)) : std::nullopt);
     // The built-in meshes carry no authored sidedness (npm's teapot is open and its winding is not
     // consistent): they render double-sided, as OBJ files do.
     if (scene.ok())

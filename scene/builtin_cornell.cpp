@@ -37,7 +37,7 @@ void addObject(Scene& scene, std::string name, Primitive prim, bool castsShadows
   scene.instances.push_back(std::move(instance));
 }
 
-} // namespace
+}  // namespace
 
 Scene makeCornellBox() {
   Scene scene;
@@ -54,14 +54,14 @@ Scene makeCornellBox() {
 
   // Corner orders follow the original data, which is counter-clockwise seen from inside the room.
   addObject(scene, "floor", makeQuad(mm(552.8f, 0, 0), mm(0, 0, 0), mm(0, 0, 559.2f), mm(549.6f, 0, 559.2f), white));
-  addObject(scene, "ceiling", makeQuad(mm(556, 548.8f, 0), mm(556, 548.8f, 559.2f), mm(0, 548.8f, 559.2f),
-                                       mm(0, 548.8f, 0), white));
-  addObject(scene, "back-wall", makeQuad(mm(549.6f, 0, 559.2f), mm(0, 0, 559.2f), mm(0, 548.8f, 559.2f),
-                                         mm(556, 548.8f, 559.2f), white));
-  addObject(scene, "red-wall", makeQuad(mm(552.8f, 0, 0), mm(549.6f, 0, 559.2f), mm(556, 548.8f, 559.2f),
-                                        mm(556, 548.8f, 0), red));
-  addObject(scene, "green-wall", makeQuad(mm(0, 0, 559.2f), mm(0, 0, 0), mm(0, 548.8f, 0), mm(0, 548.8f, 559.2f),
-                                          green));
+  addObject(scene, "ceiling",
+            makeQuad(mm(556, 548.8f, 0), mm(556, 548.8f, 559.2f), mm(0, 548.8f, 559.2f), mm(0, 548.8f, 0), white));
+  addObject(scene, "back-wall",
+            makeQuad(mm(549.6f, 0, 559.2f), mm(0, 0, 559.2f), mm(0, 548.8f, 559.2f), mm(556, 548.8f, 559.2f), white));
+  addObject(scene, "red-wall",
+            makeQuad(mm(552.8f, 0, 0), mm(549.6f, 0, 559.2f), mm(556, 548.8f, 559.2f), mm(556, 548.8f, 0), red));
+  addObject(scene, "green-wall",
+            makeQuad(mm(0, 0, 559.2f), mm(0, 0, 0), mm(0, 548.8f, 0), mm(0, 548.8f, 559.2f), green));
   // Blocks sit on the floor, so they have no bottom face (it could never be seen or lit).
   const std::array<glm::vec2, 4> shortBlock{glm::vec2(130, 65) * kScale, glm::vec2(82, 225) * kScale,
                                             glm::vec2(240, 272) * kScale, glm::vec2(290, 114) * kScale};
@@ -84,7 +84,8 @@ Scene makeCornellBox() {
   // The visible light: radiance of a uniformly emitting sphere with radiant intensity I is
   // L = I / (pi r^2), since its projected area is pi r^2 from every direction.
   const glm::vec3 radiance = light.color * light.intensity / (glm::pi<float>() * light.radius * light.radius);
-  const uint32_t emitter = addMaterial(scene, {"light", glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), 0.0f, 1.0f, radiance, false});
+  const uint32_t emitter =
+      addMaterial(scene, {"light", glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), 0.0f, 1.0f, radiance, false});
   // Baked into the vertices so every Cornell instance keeps an identity transform.
   Primitive sphere = makeUvSphere(light.radius, kLightRings, kLightSegments, emitter);
   for (glm::vec3& p : sphere.positions) p += light.position;
@@ -103,4 +104,4 @@ Scene makeCornellBox() {
   return scene;
 }
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

@@ -17,7 +17,7 @@ void appendQuadFacingAway(Primitive& prim, glm::vec3 a, glm::vec3 b, glm::vec3 c
     appendQuad(prim, a, b, c, d);
 }
 
-} // namespace
+}  // namespace
 
 Primitive makeUvSphere(float radius, int rings, int segments, uint32_t material) {
   RAYSTER_ASSERT(rings >= 2 && segments >= 3, "sphere needs at least 2 rings and 3 segments");
@@ -67,8 +67,8 @@ Primitive makeQuad(glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, uint32_t 
 }
 
 Primitive makeBox(glm::vec3 min, glm::vec3 max, uint32_t material) {
-  const std::array<glm::vec2, 4> footprint{glm::vec2(min.x, min.z), glm::vec2(max.x, min.z),
-                                           glm::vec2(max.x, max.z), glm::vec2(min.x, max.z)};
+  const std::array<glm::vec2, 4> footprint{glm::vec2(min.x, min.z), glm::vec2(max.x, min.z), glm::vec2(max.x, max.z),
+                                           glm::vec2(min.x, max.z)};
   return makePrism(footprint, min.y, max.y, /*capBottom=*/true, material);
 }
 
@@ -92,4 +92,4 @@ Primitive makePrism(const std::array<glm::vec2, 4>& footprintXz, float y0, float
   return prim;
 }
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

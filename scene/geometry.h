@@ -25,12 +25,11 @@ Primitive makeBox(glm::vec3 min, glm::vec3 max, uint32_t material);
 // A vertical prism over a convex quad footprint given in the xz plane (x, z), from y0 to y1:
 // top, 4 sides and, if capBottom, the bottom. Face orientation is derived from the prism's centre,
 // so the footprint may be listed in either winding order.
-Primitive makePrism(const std::array<glm::vec2, 4>& footprintXz, float y0, float y1, bool capBottom,
-                    uint32_t material);
+Primitive makePrism(const std::array<glm::vec2, 4>& footprintXz, float y0, float y1, bool capBottom, uint32_t material);
 
 // Triangles makeUvSphere produces (the pole bands are fans, not quads).
 inline size_t uvSphereTriangleCount(int rings, int segments) {
   return static_cast<size_t>(rings) * segments * 2 - 2 * static_cast<size_t>(segments);
 }
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

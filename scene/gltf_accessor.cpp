@@ -17,39 +17,52 @@ constexpr size_t kMaxZeroBasedCount = size_t(1) << 24;
 size_t componentSize(int componentType) {
   switch (componentType) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;
   }
 }
 
 const char* typeName(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    case TINYGLTF_TYPE_MAT2: return "MAT2";
-    case TINYGLTF_TYPE_MAT3: return "MAT3";
-    case TINYGLTF_TYPE_MAT4: return "MAT4";
-    default: return "unknown";
+    case TINYGLTF_TYPE_SCALAR:
+      return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+      return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+      return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+      return "VEC4";
+    case TINYGLTF_TYPE_MAT2:
+      return "MAT2";
+    case TINYGLTF_TYPE_MAT3:
+      return "MAT3";
+    case TINYGLTF_TYPE_MAT4:
+      return "MAT4";
+    default:
+      return "unknown";
   }
 }
 
 template <class T>
 T load(const uint8_t* p) {
   T v;
-  std::memcpy(&v, p, sizeof(T)); // glTF data need not be aligned in memory
+  std::memcpy(&v, p, sizeof(T));  // glTF data need not be aligned in memory
   return v;
 }
 
 // One component as a float, normalized integers mapped as the glTF spec says (signed: max(c/MAX, -1)).
 float decodeFloat(const uint8_t* p, int componentType, bool normalized) {
   switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p);
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return load<float>(p);
     case TINYGLTF_COMPONENT_TYPE_BYTE: {
       float c = load<int8_t>(p);
       return normalized ? std::max(c / 127.0f, -1.0f) : c;
@@ -66,17 +79,23 @@ float decodeFloat(const uint8_t* p, int componentType, bool normalized) {
       float c = load<uint16_t>(p);
       return normalized ? c / 65535.0f : c;
     }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return float(load<uint32_t>(p));
-    default: return 0.0f;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return float(load<uint32_t>(p));
+    default:
+      return 0.0f;
   }
 }
 
 uint32_t decodeUint(const uint8_t* p, int componentType) {
   switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return load<uint8_t>(p);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load<uint16_t>(p);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load<uint32_t>(p);
-    default: return 0;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return load<uint8_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return load<uint16_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return load<uint32_t>(p);
+    default:
+      return 0;
   }
 }
 
@@ -109,7 +128,7 @@ bool fits(size_t offset, size_t stride, size_t count, size_t elementSize, size_t
 
 // Everything about an accessor needed to read it, after validation.
 struct Layout {
-  const uint8_t* data = nullptr; // nullptr: all zeros (sparse accessor without a buffer view)
+  const uint8_t* data = nullptr;  // nullptr: all zeros (sparse accessor without a buffer view)
   size_t stride = 0, count = 0, elementSize = 0, componentSize = 0;
   int componentType = 0;
   bool normalized = false;
@@ -117,15 +136,15 @@ struct Layout {
 
 Result<Layout> resolve(const tinygltf::Model& model, int index, int wantType, bool integerOnly,
                        const std::string& file) {
-  if (index < 0 || size_t(index) >= model.accessors.size())
-    return bad(file, "accessor {} does not exist", index);
+  if (index < 0 || size_t(index) >= model.accessors.size()) return bad(file, "accessor {} does not exist", index);
   const tinygltf::Accessor& acc = model.accessors[size_t(index)];
   if (acc.type != wantType)
     return bad(file, "accessor {} has type {}, expected {}", index, typeName(acc.type), typeName(wantType));
   Layout layout;
   layout.componentType = acc.componentType;
   layout.componentSize = componentSize(acc.componentType);
-  if (layout.componentSize == 0) return bad(file, "accessor {} has invalid component type {}", index, acc.componentType);
+  if (layout.componentSize == 0)
+    return bad(file, "accessor {} has invalid component type {}", index, acc.componentType);
   const bool isFloat = acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
   if (integerOnly && (isFloat || acc.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
                       acc.componentType == TINYGLTF_COMPONENT_TYPE_SHORT))
@@ -210,7 +229,7 @@ Result<std::vector<glm::vec<N, float>>> readVectors(const tinygltf::Model& model
   return out;
 }
 
-} // namespace
+}  // namespace
 
 Result<std::vector<float>> readScalars(const tinygltf::Model& model, int accessor, const std::string& file) {
   Result<std::vector<glm::vec<1, float>>> values = readVectors<1>(model, accessor, TINYGLTF_TYPE_SCALAR, file);
@@ -245,4 +264,4 @@ Result<std::vector<uint32_t>> readIndices(const tinygltf::Model& model, int acce
   return out;
 }
 
-} // namespace rayster::scene::gltf
+}  // namespace rayster::scene::gltf

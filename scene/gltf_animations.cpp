@@ -95,13 +95,13 @@ void markAnimatedInstances(Scene& scene) {
   std::vector<bool> moves(scene.nodes.size(), false);
   for (const Animation& animation : scene.animations)
     for (const AnimationChannel& channel : animation.channels) moves[channel.node] = true;
-  for (size_t i = 0; i < scene.nodes.size(); ++i) // parents come first
+  for (size_t i = 0; i < scene.nodes.size(); ++i)  // parents come first
     if (scene.nodes[i].parent >= 0 && moves[size_t(scene.nodes[i].parent)]) moves[i] = true;
   for (Instance& instance : scene.instances)
     if (instance.node >= 0 && !moves[size_t(instance.node)]) instance.node = -1;
 }
 
-} // namespace
+}  // namespace
 
 Status convertAnimations(const tinygltf::Model& model, const std::string& file, const std::vector<int>& sceneNodeOf,
                          Scene& scene) {
@@ -115,9 +115,12 @@ Status convertAnimations(const tinygltf::Model& model, const std::string& file, 
       const std::string where = fmt::format("{} channel {}", animationLabel(src, a), c);
       const std::string& pathName = channel.target_path;
       AnimationChannel::Path path;
-      if (pathName == "translation") path = AnimationChannel::Translation;
-      else if (pathName == "rotation") path = AnimationChannel::Rotation;
-      else if (pathName == "scale") path = AnimationChannel::Scale;
+      if (pathName == "translation")
+        path = AnimationChannel::Translation;
+      else if (pathName == "rotation")
+        path = AnimationChannel::Rotation;
+      else if (pathName == "scale")
+        path = AnimationChannel::Scale;
       else if (pathName == "weights") {
         if (!warnedWeights) log::warn("{}: morph-target weight animations are not supported; ignored", file);
         warnedWeights = true;
@@ -132,7 +135,7 @@ Status convertAnimations(const tinygltf::Model& model, const std::string& file, 
       Result<AnimationChannel> converted = convertChannel(model, src, channel, path, where, file);
       if (!converted) return converted.error();
       const int node = sceneNodeOf[size_t(channel.target_node)];
-      if (node < 0) continue; // a node outside the displayed scene
+      if (node < 0) continue;  // a node outside the displayed scene
       if (scene.nodes[size_t(node)].hasMatrix)
         return bad(file, "{} targets node {}, which has a matrix (glTF allows animating only TRS)", where,
                    channel.target_node);
@@ -146,4 +149,4 @@ Status convertAnimations(const tinygltf::Model& model, const std::string& file, 
   return okStatus();
 }
 
-} // namespace rayster::scene::gltf
+}  // namespace rayster::scene::gltf

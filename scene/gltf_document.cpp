@@ -26,9 +26,9 @@ constexpr int kMaxJsonDepth = 64;
 // Extensions whose meaning Rayster implements (or, for KHR_mesh_quantization, that only widen
 // the accessor types the reader already handles).
 constexpr std::array<std::string_view, 9> kSupportedExtensions = {
-    "KHR_lights_punctual",       "KHR_texture_transform", "KHR_materials_emissive_strength",
+    "KHR_lights_punctual",        "KHR_texture_transform", "KHR_materials_emissive_strength",
     "KHR_materials_transmission", "KHR_materials_ior",     "KHR_materials_volume",
-    "KHR_materials_specular",    "KHR_mesh_quantization", "KHR_materials_unlit"};
+    "KHR_materials_specular",     "KHR_mesh_quantization", "KHR_materials_unlit"};
 
 bool supported(std::string_view name) {
   return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), name) != kSupportedExtensions.end();
@@ -119,9 +119,12 @@ int jsonDepth(std::string_view text) {
   bool inString = false, escaped = false;
   for (char c : text) {
     if (inString) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') inString = false;
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        inString = false;
     } else if (c == '"') {
       inString = true;
     } else if (c == '[' || c == '{') {
@@ -193,7 +196,7 @@ bool confinedFileExists(const std::string& path, void* user) {
 }
 
 std::string identityExpand(const std::string& path, void*) {
-  return path; // tinygltf's default runs wordexp() on the path: no shell expansion of file contents
+  return path;  // tinygltf's default runs wordexp() on the path: no shell expansion of file contents
 }
 
 bool confinedRead(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
@@ -247,7 +250,7 @@ std::vector<int> imageMaterials(const Json& root) {
   return out;
 }
 
-} // namespace
+}  // namespace
 
 std::string oneLine(std::string_view text) {
   std::string out;
@@ -321,4 +324,4 @@ tinygltf::FsCallbacks makeConfinedFsCallbacks(ConfinedFs* fs) {
   return callbacks;
 }
 
-} // namespace rayster::scene::gltf
+}  // namespace rayster::scene::gltf

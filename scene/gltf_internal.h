@@ -45,7 +45,7 @@ Result<VettedJson> vetJson(const std::string& file, std::string_view json);
 // A second line of defence behind vetJson: tinygltf's file access, confined to baseDir. Paths
 // outside it are refused and remembered in `violation`.
 struct ConfinedFs {
-  std::string baseDir; // absolute, no trailing slash
+  std::string baseDir;  // absolute, no trailing slash
   std::string violation;
 };
 tinygltf::FsCallbacks makeConfinedFsCallbacks(ConfinedFs* fs);
@@ -74,7 +74,7 @@ struct MeshBuilder {
   const tinygltf::Model& model;
   const std::string& file;
   Scene& scene;
-  std::optional<uint32_t> defaultMaterial; // appended on first use
+  std::optional<uint32_t> defaultMaterial;  // appended on first use
 };
 Result<Mesh> convertMesh(MeshBuilder& builder, int meshIndex);
 
@@ -94,4 +94,4 @@ Status convertAnimations(const tinygltf::Model& model, const std::string& file, 
 // A number from a tinygltf Value (extras, extensions), or `fallback` when absent or not a number.
 double numberOr(const tinygltf::Value& object, const char* key, double fallback);
 
-} // namespace rayster::scene::gltf
+}  // namespace rayster::scene::gltf

@@ -79,10 +79,8 @@ Result<tinygltf::Model> parse(const fs::path& path, const std::string& file, Ima
   std::string err, warn;
   bool ok = false;
   try {
-    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes->data(), glbLength(*bytes),
-                                              confined.baseDir)
-                : loader.LoadASCIIFromString(&model, &err, &warn, json.data(), unsigned(json.size()),
-                                             confined.baseDir);
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes->data(), glbLength(*bytes), confined.baseDir)
+                : loader.LoadASCIIFromString(&model, &err, &warn, json.data(), unsigned(json.size()), confined.baseDir);
   } catch (const std::exception& e) {
     return bad(file, "invalid glTF: {}", oneLine(e.what()));
   }
@@ -101,15 +99,15 @@ Result<SceneNode> convertNode(const tinygltf::Node& src, size_t index, const std
   node.name = src.name.empty() ? fmt::format("node{}", index) : src.name;
   if (src.matrix.size() == 16) {
     node.hasMatrix = true;
-    for (int i = 0; i < 16; ++i) glm::value_ptr(node.matrix)[i] = float(src.matrix[size_t(i)]); // column-major, as glm
+    for (int i = 0; i < 16; ++i) glm::value_ptr(node.matrix)[i] = float(src.matrix[size_t(i)]);  // column-major, as glm
   } else {
     if (src.translation.size() == 3)
       node.translation = glm::vec3(src.translation[0], src.translation[1], src.translation[2]);
     if (src.scale.size() == 3) node.scale = glm::vec3(src.scale[0], src.scale[1], src.scale[2]);
-    if (src.rotation.size() == 4) { // glTF stores x, y, z, w
+    if (src.rotation.size() == 4) {  // glTF stores x, y, z, w
       glm::quat r(float(src.rotation[3]), float(src.rotation[0]), float(src.rotation[1]), float(src.rotation[2]));
       const float length = glm::length(r);
-      if (length > 0.0f && std::isfinite(length)) r /= length; // exporters round; a skewing matrix helps no one
+      if (length > 0.0f && std::isfinite(length)) r /= length;  // exporters round; a skewing matrix helps no one
       node.rotation = r;
     }
   }
@@ -161,14 +159,18 @@ Status addLight(const tinygltf::Model& model, const tinygltf::Node& node, int li
   const tinygltf::Light& src = model.lights[size_t(lightIndex)];
   Light light;
   light.name = !node.name.empty() ? node.name : !src.name.empty() ? src.name : fmt::format("light{}", lightIndex);
-  if (src.type == "point") light.type = LightType::Point;
-  else if (src.type == "spot") light.type = LightType::Spot;
-  else if (src.type == "directional") light.type = LightType::Directional;
-  else return bad(file, "light '{}' has unknown type '{}'", light.name, src.type);
+  if (src.type == "point")
+    light.type = LightType::Point;
+  else if (src.type == "spot")
+    light.type = LightType::Spot;
+  else if (src.type == "directional")
+    light.type = LightType::Directional;
+  else
+    return bad(file, "light '{}' has unknown type '{}'", light.name, src.type);
   if (src.color.size() == 3) light.color = glm::vec3(src.color[0], src.color[1], src.color[2]);
   light.intensity = float(src.intensity);
   light.position = glm::vec3(world[3]);
-  const glm::vec3 direction = glm::mat3(world) * glm::vec3(0, 0, -1); // lights shine down local -Z
+  const glm::vec3 direction = glm::mat3(world) * glm::vec3(0, 0, -1);  // lights shine down local -Z
   if (!(glm::length(direction) > 0.0f)) return bad(file, "light '{}' has a degenerate transform", light.name);
   light.direction = glm::normalize(direction);
   if (light.type == LightType::Spot) {
@@ -189,7 +191,7 @@ int nodeLight(const tinygltf::Node& node) {
   auto it = node.extensions.find("KHR_lights_punctual");
   if (it == node.extensions.end()) return -1;
   const double index = numberOr(it->second, "light", -1.0);
-  return index >= 0.0 && index < 2147483647.0 ? int(index) : -2; // -2: present but invalid
+  return index >= 0.0 && index < 2147483647.0 ? int(index) : -2;  // -2: present but invalid
 }
 
 // The scene's root nodes, after checking that the hierarchy is a forest: children exist, and no
@@ -207,11 +209,11 @@ Result<std::vector<int>> rootNodes(const tinygltf::Model& model, const std::stri
     }
   std::vector<int> roots;
   if (!model.scenes.empty()) {
-    const size_t s = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size()
-                         ? size_t(model.defaultScene)
-                         : 0;
+    const size_t s =
+        model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size() ? size_t(model.defaultScene) : 0;
     for (int n : model.scenes[s].nodes) {
-      if (n < 0 || size_t(n) >= model.nodes.size()) return bad(file, "scene {} uses node {}, which does not exist", s, n);
+      if (n < 0 || size_t(n) >= model.nodes.size())
+        return bad(file, "scene {} uses node {}, which does not exist", s, n);
       roots.push_back(n);
     }
   } else {
@@ -295,14 +297,13 @@ Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene
     }
     if (node.camera >= 0) RAYSTER_TRY(addCamera(model, node, world, scene, file));
     if (int light = nodeLight(node); light != -1) RAYSTER_TRY(addLight(model, node, light, world, scene, file));
-    for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
-      stack.emplace_back(*child, self);
+    for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.emplace_back(*child, self);
   }
   return okStatus();
 }
 
-} // namespace
-} // namespace gltf
+}  // namespace
+}  // namespace gltf
 
 Result<Scene> loadGltf(const fs::path& path) {
   const std::string file = path.filename().string();
@@ -326,4 +327,4 @@ Result<Scene> loadGltf(const fs::path& path) {
   return scene;
 }
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

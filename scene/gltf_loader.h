@@ -19,4 +19,4 @@ namespace rayster::scene {
 // and the cause, e.g. "box.gltf: accessor 3 reads past the end of buffer view 1".
 Result<Scene> loadGltf(const std::filesystem::path& path);
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

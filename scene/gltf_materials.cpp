@@ -2,7 +2,7 @@
 #include <cfloat>
 #include <cmath>
 
-#include <stb/stb_image.h> // declarations only: the implementation lives in core/image_io.cpp
+#include <stb/stb_image.h>  // declarations only: the implementation lives in core/image_io.cpp
 
 #include "core/log.h"
 #include "scene/gltf_internal.h"
@@ -49,9 +49,12 @@ const tinygltf::Value* extension(const tinygltf::ExtensionMap& extensions, const
 Sampler convertSampler(const tinygltf::Sampler& src) {
   auto wrap = [](int mode) {
     switch (mode) {
-      case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::ClampToEdge;
-      case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::MirroredRepeat;
-      default: return Wrap::Repeat;
+      case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+        return Wrap::ClampToEdge;
+      case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+        return Wrap::MirroredRepeat;
+      default:
+        return Wrap::Repeat;
     }
   };
   Sampler s;
@@ -89,7 +92,7 @@ TextureRef textureRef(const MaterialContext& ctx, int index, int texCoord, const
     ref.offset = valueVectorOr<2>(*t, "offset", glm::vec2(0.0f));
     ref.scale = valueVectorOr<2>(*t, "scale", glm::vec2(1.0f));
     ref.rotation = finiteOr(numberOr(*t, "rotation", 0.0), 0.0f);
-    if (t->Has("texCoord")) uvSet = int(numberOr(*t, "texCoord", texCoord)); // the extension overrides
+    if (t->Has("texCoord")) uvSet = int(numberOr(*t, "texCoord", texCoord));  // the extension overrides
   }
   if (uvSet < 0 || uvSet > 1) {
     log::warn("{}: material '{}' uses UV set {}; Rayster reads sets 0 and 1, using 0", ctx.file, material, uvSet);
@@ -127,13 +130,14 @@ Material convertMaterial(const MaterialContext& ctx, const tinygltf::Material& s
   m.roughness = glm::clamp(finiteOr(pbr.roughnessFactor, 1.0f), 0.0f, 1.0f);
   m.baseColorTexture = textureRef(ctx, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
                                   pbr.baseColorTexture.extensions, m.name);
-  m.metallicRoughnessTexture = textureRef(ctx, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-                                          pbr.metallicRoughnessTexture.extensions, m.name);
+  m.metallicRoughnessTexture =
+      textureRef(ctx, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                 pbr.metallicRoughnessTexture.extensions, m.name);
   m.normalTexture =
       textureRef(ctx, src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions, m.name);
   m.normalScale = finiteOr(src.normalTexture.scale, 1.0f);
-  m.occlusionTexture =
-      textureRef(ctx, src.occlusionTexture.index, src.occlusionTexture.texCoord, src.occlusionTexture.extensions, m.name);
+  m.occlusionTexture = textureRef(ctx, src.occlusionTexture.index, src.occlusionTexture.texCoord,
+                                  src.occlusionTexture.extensions, m.name);
   m.occlusionStrength = glm::clamp(finiteOr(src.occlusionTexture.strength, 1.0f), 0.0f, 1.0f);
   m.emissiveTexture =
       textureRef(ctx, src.emissiveTexture.index, src.emissiveTexture.texCoord, src.emissiveTexture.extensions, m.name);
@@ -141,8 +145,10 @@ Material convertMaterial(const MaterialContext& ctx, const tinygltf::Material& s
   if (const tinygltf::Value* e = extension(src.extensions, "KHR_materials_emissive_strength"))
     m.emissive *= finiteOr(numberOr(*e, "emissiveStrength", 1.0), 1.0f);
   m.doubleSided = src.doubleSided;
-  if (src.alphaMode == "MASK") m.alphaMode = AlphaMode::Mask;
-  else if (src.alphaMode == "BLEND") m.alphaMode = AlphaMode::Blend;
+  if (src.alphaMode == "MASK")
+    m.alphaMode = AlphaMode::Mask;
+  else if (src.alphaMode == "BLEND")
+    m.alphaMode = AlphaMode::Blend;
   m.alphaCutoff = finiteOr(src.alphaCutoff, 0.5f);
 
   if (const tinygltf::Value* e = extension(src.extensions, "KHR_materials_transmission"))
@@ -195,7 +201,7 @@ Result<ImageData> convertImage(const tinygltf::Image& src, size_t index, const s
   return img;
 }
 
-} // namespace
+}  // namespace
 
 double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
   if (!object.IsObject() || !object.Has(key)) return fallback;
@@ -299,4 +305,4 @@ Status convertMaterials(const tinygltf::Model& model, const std::string& file, c
   return okStatus();
 }
 
-} // namespace rayster::scene::gltf
+}  // namespace rayster::scene::gltf

@@ -12,14 +12,22 @@ namespace {
 
 const char* modeName(int mode) {
   switch (mode) {
-    case TINYGLTF_MODE_POINTS: return "POINTS";
-    case TINYGLTF_MODE_LINE: return "LINES";
-    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
-    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
-    case TINYGLTF_MODE_TRIANGLES: return "TRIANGLES";
-    case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
-    case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
-    default: return "unknown";
+    case TINYGLTF_MODE_POINTS:
+      return "POINTS";
+    case TINYGLTF_MODE_LINE:
+      return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP:
+      return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP:
+      return "LINE_STRIP";
+    case TINYGLTF_MODE_TRIANGLES:
+      return "TRIANGLES";
+    case TINYGLTF_MODE_TRIANGLE_STRIP:
+      return "TRIANGLE_STRIP";
+    case TINYGLTF_MODE_TRIANGLE_FAN:
+      return "TRIANGLE_FAN";
+    default:
+      return "unknown";
   }
 }
 
@@ -71,15 +79,15 @@ uint32_t defaultMaterial(MeshBuilder& builder) {
 // decoration, unlike positions or indices. Float values are clamped to [0, 1], NaN to 1.
 Result<std::vector<glm::vec4>> readColors(const tinygltf::Model& model, int index, const std::string& file,
                                           const std::string& where) {
-  if (index < 0 || size_t(index) >= model.accessors.size()) return bad(file, "{}: COLOR_0 accessor {} does not exist", where, index);
+  if (index < 0 || size_t(index) >= model.accessors.size())
+    return bad(file, "{}: COLOR_0 accessor {} does not exist", where, index);
   const tinygltf::Accessor& acc = model.accessors[size_t(index)];
-  const bool normalizedInteger =
-      acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                         acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  const bool normalizedInteger = acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                                    acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
   if ((acc.type != TINYGLTF_TYPE_VEC3 && acc.type != TINYGLTF_TYPE_VEC4) ||
       (acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !normalizedInteger)) {
-    log::warn("{}: {}: COLOR_0 is not float or normalized unsigned byte/short VEC3/VEC4; vertex colours ignored",
-              file, where);
+    log::warn("{}: {}: COLOR_0 is not float or normalized unsigned byte/short VEC3/VEC4; vertex colours ignored", file,
+              where);
     return std::vector<glm::vec4>{};
   }
   std::vector<glm::vec4> colors;
@@ -112,22 +120,20 @@ Result<Primitive> convertPrimitive(MeshBuilder& builder, const tinygltf::Mesh& m
   if (src.mode != TINYGLTF_MODE_TRIANGLES && src.mode != -1)
     return bad(file, "{} primitive {} uses mode {}, only triangles are supported", label, primIndex,
                modeName(src.mode));
-  if (!src.targets.empty())
-    log::warn("{}: {} primitive {}: morph targets are ignored", file, label, primIndex);
+  if (!src.targets.empty()) log::warn("{}: {} primitive {}: morph targets are ignored", file, label, primIndex);
 
   Primitive prim;
   auto positions = readVec3(model, attribute(src, "POSITION"), file);  // convertMesh checked it is there
   if (!positions) return positions.error();
   prim.positions = std::move(*positions);
   const size_t vertexCount = prim.positions.size();
-  if (vertexCount > UINT32_MAX)
-    return bad(file, "{} primitive {} has too many vertices", label, primIndex);
+  if (vertexCount > UINT32_MAX) return bad(file, "{} primitive {} has too many vertices", label, primIndex);
 
   // Optional attributes must match POSITION's count; a mismatch is a broken file, not a detail.
   auto checkCount = [&](size_t count, const char* what) -> Status {
     if (count != vertexCount)
-      return bad(file, "{} primitive {}: {} has {} elements for {} positions", label, primIndex, what,
-                 count, vertexCount);
+      return bad(file, "{} primitive {}: {} has {} elements for {} positions", label, primIndex, what, count,
+                 vertexCount);
     return okStatus();
   };
   if (int a = attribute(src, "NORMAL"); a >= 0) {
@@ -186,16 +192,15 @@ Result<Primitive> convertPrimitive(MeshBuilder& builder, const tinygltf::Mesh& m
 
   if (src.material >= 0) {
     if (size_t(src.material) >= model.materials.size())
-      return bad(file, "{} primitive {} uses material {}, which does not exist", label, primIndex,
-                 src.material);
-    prim.material = uint32_t(src.material); // materials are converted in glTF order, so indices carry over
+      return bad(file, "{} primitive {} uses material {}, which does not exist", label, primIndex, src.material);
+    prim.material = uint32_t(src.material);  // materials are converted in glTF order, so indices carry over
   } else {
     prim.material = defaultMaterial(builder);
   }
   return prim;
 }
 
-} // namespace
+}  // namespace
 
 Result<Mesh> convertMesh(MeshBuilder& builder, int meshIndex) {
   const tinygltf::Mesh& src = builder.model.meshes[size_t(meshIndex)];
@@ -217,4 +222,4 @@ Result<Mesh> convertMesh(MeshBuilder& builder, int meshIndex) {
   return mesh;
 }
 
-} // namespace rayster::scene::gltf
+}  // namespace rayster::scene::gltf

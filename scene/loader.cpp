@@ -50,22 +50,21 @@ bool isBuiltinName(const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-} // namespace
+}  // namespace
 
 Result<fs::path> resolveRelativePath(const fs::path& baseDir, std::string_view ref, std::string_view what) {
   std::string text(ref);
   std::replace(text.begin(), text.end(), '\\', '/');
   if (text.empty()) return makeError(ExitCode::BadInput, "{} is an empty path", what);
-  if (text.find('\0') != std::string::npos)
-    return makeError(ExitCode::BadInput, "{} contains a NUL character", what);
+  if (text.find('\0') != std::string::npos) return makeError(ExitCode::BadInput, "{} contains a NUL character", what);
   if (text[0] == '/')
     return makeError(ExitCode::BadInput, "{} '{}' is an absolute path; paths must be relative to the file's folder",
                      what, ref);
   // "http:", "file:", and Windows drive letters ("C:") all look like a scheme.
   const size_t colon = text.find(':');
   if (colon != std::string::npos && colon < text.find('/') && std::isalpha(static_cast<unsigned char>(text[0])))
-    return makeError(ExitCode::BadInput, "{} '{}' is a URI or drive path; only relative file paths are supported",
-                     what, ref);
+    return makeError(ExitCode::BadInput, "{} '{}' is a URI or drive path; only relative file paths are supported", what,
+                     ref);
   const fs::path relative(text);
   for (const fs::path& part : relative)
     if (part == "..")
@@ -143,4 +142,4 @@ void applyDefaults(Scene& scene) {
   if (scene.cameras.empty()) scene.cameras.push_back(makeFramingCamera(scene.bounds()));
 }
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

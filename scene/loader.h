@@ -34,4 +34,4 @@ Camera makeFramingCamera(const Aabb& bounds);
 Result<std::filesystem::path> resolveRelativePath(const std::filesystem::path& baseDir, std::string_view ref,
                                                   std::string_view what);
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

@@ -21,7 +21,7 @@ glm::vec3 transformDirection(const glm::mat4& m, glm::vec3 d) {
   return len > 0.0f && std::isfinite(len) ? moved / len : d;
 }
 
-} // namespace
+}  // namespace
 
 void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
   const size_t meshBase = dst.meshes.size(), materialBase = dst.materials.size(), imageBase = dst.images.size(),
@@ -98,4 +98,4 @@ void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
   if (dst.name.empty()) dst.name = std::move(src.name);
 }
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

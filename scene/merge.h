@@ -13,4 +13,4 @@ namespace rayster::scene {
 // ambient, camera path and name unless it has none, then src's are taken.
 void appendScene(Scene& dst, Scene src, const glm::mat4& transform);
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

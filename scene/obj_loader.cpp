@@ -75,8 +75,8 @@ Status checkIndex(std::string_view field, const char* kind, int64_t soFar, int64
     return makeError(ExitCode::BadInput, "{}: face {} index {} is past the {} {}s in the file", where, kind, value,
                      total, kind);
   if (value < 0 && soFar + value < 0)
-    return makeError(ExitCode::BadInput, "{}: relative face {} index {} points before the first {} ({} so far)",
-                     where, kind, value, kind, soFar);
+    return makeError(ExitCode::BadInput, "{}: relative face {} index {} points before the first {} ({} so far)", where,
+                     kind, value, kind, soFar);
   return okStatus();
 }
 
@@ -87,9 +87,12 @@ Status checkFaceIndices(std::string_view text, const std::string& file) {
   forEachLine(text, [&](size_t, std::string_view line) {
     std::string_view rest;
     std::string_view key = keyword(line, &rest);
-    if (key == "v") ++total.v;
-    else if (key == "vt") ++total.vt;
-    else if (key == "vn") ++total.vn;
+    if (key == "v")
+      ++total.v;
+    else if (key == "vt")
+      ++total.vt;
+    else if (key == "vn")
+      ++total.vn;
   });
   AttributeCounts soFar;
   Status status = okStatus();
@@ -97,9 +100,12 @@ Status checkFaceIndices(std::string_view text, const std::string& file) {
     if (!status.ok()) return;
     std::string_view rest;
     std::string_view key = keyword(line, &rest);
-    if (key == "v") ++soFar.v;
-    else if (key == "vt") ++soFar.vt;
-    else if (key == "vn") ++soFar.vn;
+    if (key == "v")
+      ++soFar.v;
+    else if (key == "vt")
+      ++soFar.vt;
+    else if (key == "vn")
+      ++soFar.vn;
     if (key != "f") return;
     const std::string where = fmt::format("{}:{}", file, lineNumber);
     size_t pos = 0;
@@ -265,7 +271,8 @@ Result<Material> convertMaterial(const tinyobj::material_t& m, TextureLoader& te
     if (!texture) return texture.error();
     out.baseColorTexture.texture = *texture;
     // map_Kd usually comes with a placeholder Kd; black would hide the texture entirely.
-    if (*texture >= 0 && isBlack(glm::vec3(out.baseColor))) out.baseColor = glm::vec4(1.0f, 1.0f, 1.0f, out.baseColor.w);
+    if (*texture >= 0 && isBlack(glm::vec3(out.baseColor)))
+      out.baseColor = glm::vec4(1.0f, 1.0f, 1.0f, out.baseColor.w);
     // map_d next to a texture with an alpha channel means cut-outs (foliage), not blending.
     if (*texture >= 0 && !m.alpha_texname.empty() && out.alphaMode == AlphaMode::Opaque &&
         hasTransparentPixels(scene.images[scene.textures[*texture].image]))
@@ -438,7 +445,7 @@ std::string firstLine(const std::string& text) {
   return line.empty() ? "parse error" : line;
 }
 
-} // namespace
+}  // namespace
 
 Result<Scene> loadObj(const fs::path& path) {
   const std::string file = path.string();
@@ -481,4 +488,4 @@ Result<Scene> loadObj(const fs::path& path) {
   return scene;
 }
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

@@ -18,4 +18,4 @@ namespace rayster::scene {
 // ExitCode::BadInput.
 Result<Scene> loadObj(const std::filesystem::path& path);
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

@@ -39,8 +39,7 @@ Status validatePrimitive(const Scene& scene, const Mesh& mesh, size_t meshIndex,
       return makeError(ExitCode::BadInput, "{}: index {} is {}, past the vertex count {}", where, i, prim.indices[i],
                        vertexCount);
   for (size_t i = 0; i < vertexCount; ++i)
-    if (!finite(prim.positions[i]))
-      return makeError(ExitCode::BadInput, "{}: position {} is not finite", where, i);
+    if (!finite(prim.positions[i])) return makeError(ExitCode::BadInput, "{}: position {} is not finite", where, i);
   if (prim.material >= scene.materials.size())
     return makeError(ExitCode::BadInput, "{}: material {} out of range ({} materials)", where, prim.material,
                      scene.materials.size());
@@ -68,7 +67,7 @@ Status validateAnimation(const Scene& scene, const std::string& sceneName) {
   return okStatus();
 }
 
-} // namespace
+}  // namespace
 
 void Aabb::extend(glm::vec3 p) {
   min = glm::min(min, p);
@@ -121,9 +120,9 @@ Status validate(const Scene& scene) {
   }
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     const Material& mat = scene.materials[i];
-    for (const TextureRef* t : {&mat.baseColorTexture, &mat.metallicRoughnessTexture, &mat.normalTexture,
-                                &mat.occlusionTexture, &mat.emissiveTexture, &mat.specularTexture,
-                                &mat.specularColorTexture})
+    for (const TextureRef* t :
+         {&mat.baseColorTexture, &mat.metallicRoughnessTexture, &mat.normalTexture, &mat.occlusionTexture,
+          &mat.emissiveTexture, &mat.specularTexture, &mat.specularColorTexture})
       if (t->valid() && (size_t(t->texture) >= scene.textures.size() || t->texCoord > 1))
         return makeError(ExitCode::BadInput, "{}: material {} '{}' uses a missing texture or UV set", sceneName, i,
                          mat.name);
@@ -137,8 +136,8 @@ Status validate(const Scene& scene) {
   for (size_t i = 0; i < scene.instances.size(); ++i) {
     const Instance& instance = scene.instances[i];
     if (instance.mesh >= scene.meshes.size())
-      return makeError(ExitCode::BadInput, "{}: instance {} '{}' uses mesh {} ({} meshes)", sceneName, i,
-                       instance.name, instance.mesh, scene.meshes.size());
+      return makeError(ExitCode::BadInput, "{}: instance {} '{}' uses mesh {} ({} meshes)", sceneName, i, instance.name,
+                       instance.mesh, scene.meshes.size());
     if (!finite(instance.worldFromObject))
       return makeError(ExitCode::BadInput, "{}: instance {} '{}' has a non-finite transform", sceneName, i,
                        instance.name);
@@ -160,4 +159,4 @@ Status validate(const Scene& scene) {
   return okStatus();
 }
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

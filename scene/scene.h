@@ -16,11 +16,11 @@ namespace rayster::scene {
 
 // A texture as a material uses it: which texture, which UV set, and KHR_texture_transform.
 struct TextureRef {
-  int32_t texture = -1;  // index into Scene::textures; -1: none
-  uint32_t texCoord = 0; // UV set (0 or 1)
+  int32_t texture = -1;   // index into Scene::textures; -1: none
+  uint32_t texCoord = 0;  // UV set (0 or 1)
   glm::vec2 offset{0.0f};
   glm::vec2 scale{1.0f};
-  float rotation = 0.0f; // radians, counter-clockwise in UV space (KHR_texture_transform)
+  float rotation = 0.0f;  // radians, counter-clockwise in UV space (KHR_texture_transform)
   bool valid() const { return texture >= 0; }
 };
 
@@ -32,7 +32,7 @@ struct Material {
   glm::vec4 baseColor{1.0f};  // linear; alpha is coverage
   float metallic = 0.0f;
   float roughness = 1.0f;
-  glm::vec3 emissive{0.0f};   // linear radiance, KHR_materials_emissive_strength folded in
+  glm::vec3 emissive{0.0f};  // linear radiance, KHR_materials_emissive_strength folded in
   bool doubleSided = false;
   TextureRef baseColorTexture;          // sRGB
   TextureRef metallicRoughnessTexture;  // linear: G roughness, B metallic
@@ -43,16 +43,16 @@ struct Material {
   float occlusionStrength = 1.0f;
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
-  float transmission = 0.0f;            // KHR_materials_transmission
-  float ior = 1.5f;                     // KHR_materials_ior
-  float thickness = 0.0f;               // KHR_materials_volume; 0: thin-walled
+  float transmission = 0.0f;  // KHR_materials_transmission
+  float ior = 1.5f;           // KHR_materials_ior
+  float thickness = 0.0f;     // KHR_materials_volume; 0: thin-walled
   glm::vec3 attenuationColor{1.0f};
   float attenuationDistance = FLT_MAX;
   // KHR_materials_specular: the dielectric lobe's strength (F0 and F90) and its F0 tint.
-  float specular = 1.0f;                // [0, 1]
-  glm::vec3 specularColor{1.0f};        // linear, >= 0; may exceed 1 (F0 × colour is clamped to 1)
-  TextureRef specularTexture;           // linear: A multiplies specular
-  TextureRef specularColorTexture;      // sRGB: RGB multiplies specularColor
+  float specular = 1.0f;            // [0, 1]
+  glm::vec3 specularColor{1.0f};    // linear, >= 0; may exceed 1 (F0 × colour is clamped to 1)
+  TextureRef specularTexture;       // linear: A multiplies specular
+  TextureRef specularColorTexture;  // sRGB: RGB multiplies specularColor
   // KHR_materials_unlit: the surface shows its base colour (× vertex colour × texture) as emitted
   // radiance and scatters no light (docs in render/gpu_materials.cpp).
   bool unlit = false;
@@ -112,7 +112,7 @@ struct Instance {
   std::string name;
   uint32_t mesh = 0;
   glm::mat4 worldFromObject{1.0f};
-  bool castsShadows = true; // false for the visible shape of an area light
+  bool castsShadows = true;  // false for the visible shape of an area light
   // The node (index into Scene::nodes) whose world transform this instance takes when animations
   // are evaluated; -1: static. Loaders set it only where an animation moves the node or a parent,
   // so a renderer can refit just these instances.
@@ -124,24 +124,24 @@ struct Instance {
 // computes every world matrix.
 struct SceneNode {
   std::string name;
-  int32_t parent = -1; // index into Scene::nodes; -1: a root
+  int32_t parent = -1;  // index into Scene::nodes; -1: a root
   // Local transform: TRS as glTF gives it, or a fixed matrix (glTF forbids animating those).
   glm::vec3 translation{0.0f};
-  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f}; // w, x, y, z; unit length
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z; unit length
   glm::vec3 scale{1.0f};
   bool hasMatrix = false;
   glm::mat4 matrix{1.0f};
-  glm::mat4 worldFromNode{1.0f}; // as of the last load or evaluateAnimations()
+  glm::mat4 worldFromNode{1.0f};  // as of the last load or evaluateAnimations()
 
-  glm::mat4 parentFromNode() const; // the local transform as a matrix
+  glm::mat4 parentFromNode() const;  // the local transform as a matrix
 };
 
 // One animated property of one node, sampled as glTF 2.0 says.
 struct AnimationChannel {
-  uint32_t node = 0; // index into Scene::nodes
+  uint32_t node = 0;  // index into Scene::nodes
   enum Path { Translation, Rotation, Scale } path = Translation;
   enum Interp { Step, Linear, CubicSpline } interp = Linear;
-  std::vector<float> times; // seconds, strictly increasing, >= 0
+  std::vector<float> times;  // seconds, strictly increasing, >= 0
   // One value per key (xyz for translation and scale, quaternion xyzw for rotation, as glTF
   // stores it); CubicSpline holds in-tangent, value, out-tangent for each key, 3 × times.size().
   std::vector<glm::vec4> values;
@@ -150,7 +150,7 @@ struct AnimationChannel {
 struct Animation {
   std::string name;
   std::vector<AnimationChannel> channels;
-  float duration = 0.0f; // seconds: the last key time over all channels
+  float duration = 0.0f;  // seconds: the last key time over all channels
 };
 
 enum class LightType { Point, Spot, Directional };
@@ -159,11 +159,11 @@ struct Light {
   std::string name;
   LightType type = LightType::Point;
   glm::vec3 position{0.0f};
-  glm::vec3 direction{0, -1, 0}; // direction light travels, for spot/directional
+  glm::vec3 direction{0, -1, 0};  // direction light travels, for spot/directional
   glm::vec3 color{1.0f};
-  float intensity = 1.0f;        // W/sr-like radiant intensity for point/spot; irradiance for directional
-  float radius = 0.0f;           // sphere light radius, 0 = hard point
-  float angularRadius = 0.0f;    // directional, radians
+  float intensity = 1.0f;      // W/sr-like radiant intensity for point/spot; irradiance for directional
+  float radius = 0.0f;         // sphere light radius, 0 = hard point
+  float angularRadius = 0.0f;  // directional, radians
   float innerConeAngle = 0.0f, outerConeAngle = 0.7853982f;
 };
 
@@ -172,7 +172,7 @@ struct Camera {
   glm::vec3 position{0, 0, 5};
   glm::vec3 target{0.0f};
   glm::vec3 up{0, 1, 0};
-  float yFov = 0.7f; // radians
+  float yFov = 0.7f;  // radians
   float zNear = 0.05f;
   float zFar = 100.0f;
 };
@@ -184,8 +184,8 @@ struct Environment {
   int width = 0, height = 0;
   std::vector<float> rgb;  // Map: linear RGB, width × height × 3, top row first (+Y up)
   float intensity = 1.0f;
-  float rotation = 0.0f;  // radians about +Y
-  glm::vec3 zenith{0.25f, 0.45f, 0.9f};   // Sky
+  float rotation = 0.0f;                 // radians about +Y
+  glm::vec3 zenith{0.25f, 0.45f, 0.9f};  // Sky
   glm::vec3 horizon{0.85f, 0.9f, 1.0f};
   glm::vec3 ground{0.3f, 0.28f, 0.25f};
 };
@@ -212,19 +212,19 @@ struct Scene {
   std::vector<Sampler> samplers;
   std::vector<Texture> textures;
   std::vector<Instance> instances;
-  std::vector<SceneNode> nodes;      // the hierarchy behind animated instances; may be empty
-  std::vector<Animation> animations; // all play together (see scene/animation.h)
+  std::vector<SceneNode> nodes;       // the hierarchy behind animated instances; may be empty
+  std::vector<Animation> animations;  // all play together (see scene/animation.h)
   std::vector<Light> lights;
   std::vector<Camera> cameras;
   std::vector<CameraKey> cameraPath;
   Environment environment;
-  glm::vec3 ambient{0.0f}; // uniform ambient radiance, stand-in for indirect light when RT indirect is off
+  glm::vec3 ambient{0.0f};  // uniform ambient radiance, stand-in for indirect light when RT indirect is off
   // Render one-bounce ray-traced indirect diffuse unless told otherwise (--indirect): set by the
   // built-in scenes made to show it off; off for loaded scenes, where its cost is unknown.
   bool indirectByDefault = false;
 
-  Aabb bounds() const; // world-space, over all instances
-  size_t triangleCount() const; // over all instances, i.e. what the TLAS holds
+  Aabb bounds() const;           // world-space, over all instances
+  size_t triangleCount() const;  // over all instances, i.e. what the TLAS holds
   bool animated() const { return !animations.empty(); }
 };
 
@@ -232,4 +232,4 @@ struct Scene {
 // ExitCode::BadInput with a message naming the mesh/primitive/instance.
 Status validate(const Scene& scene);
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

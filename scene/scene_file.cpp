@@ -8,9 +8,9 @@
 #include <string>
 #include <string_view>
 
+#include <stb/stb_image.h>  // stbi_info only: the implementation lives in core/image_io.cpp
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
-#include <stb/stb_image.h>  // stbi_info only: the implementation lives in core/image_io.cpp
 
 #include "core/image_io.h"
 #include "core/log.h"
@@ -175,15 +175,20 @@ Status readModel(const Reader& r, const json& model, const std::string& path, Sc
 }
 
 Result<Light> readLight(const Reader& r, const json& j, const std::string& path) {
-  RAYSTER_TRY(r.object(j, path, {"type", "name", "position", "direction", "color", "intensity", "radius",
-                                 "angularRadius", "innerConeAngle", "outerConeAngle"}));
+  RAYSTER_TRY(r.object(j, path,
+                       {"type", "name", "position", "direction", "color", "intensity", "radius", "angularRadius",
+                        "innerConeAngle", "outerConeAngle"}));
   Light light;
   std::string type;
   RAYSTER_TRY(r.string(j, "type", path, type));
-  if (type == "point") light.type = LightType::Point;
-  else if (type == "spot") light.type = LightType::Spot;
-  else if (type == "directional") light.type = LightType::Directional;
-  else return r.error(child(path, "type"), "must be \"point\", \"spot\" or \"directional\"");
+  if (type == "point")
+    light.type = LightType::Point;
+  else if (type == "spot")
+    light.type = LightType::Spot;
+  else if (type == "directional")
+    light.type = LightType::Directional;
+  else
+    return r.error(child(path, "type"), "must be \"point\", \"spot\" or \"directional\"");
   RAYSTER_TRY(r.string(j, "name", path, light.name));
   RAYSTER_TRY(r.vec(j, "position", path, light.position));
   RAYSTER_TRY(r.vec(j, "direction", path, light.direction));
@@ -199,8 +204,8 @@ Result<Light> readLight(const Reader& r, const json& j, const std::string& path)
   float angular = glm::degrees(light.angularRadius), inner = glm::degrees(light.innerConeAngle),
         outer = glm::degrees(light.outerConeAngle);
   RAYSTER_TRY(r.number(j, "angularRadius", path, angular));
-  RAYSTER_TRY(r.require(angular >= 0.0f && angular < 90.0f, child(path, "angularRadius"),
-                        "must be between 0 and 90 degrees"));
+  RAYSTER_TRY(
+      r.require(angular >= 0.0f && angular < 90.0f, child(path, "angularRadius"), "must be between 0 and 90 degrees"));
   RAYSTER_TRY(r.number(j, "innerConeAngle", path, inner));
   RAYSTER_TRY(r.number(j, "outerConeAngle", path, outer));
   RAYSTER_TRY(r.require(outer > 0.0f && outer <= 90.0f, child(path, "outerConeAngle"),
@@ -250,8 +255,9 @@ Status readEnvironmentMap(const Reader& r, const std::string& ref, const std::st
   Result<ImageF> image = readImageLinear(*file);
   if (!image) return makeError(ExitCode::BadInput, "{}: {}: {}", r.file(), path, image.error().message);
   RAYSTER_TRY(r.require(!image->empty() && image->width <= kMaxEnvironmentSide && image->height <= kMaxEnvironmentSide,
-                        path, fmt::format("'{}' is {}x{}: empty or more than {} pixels per side", ref, image->width,
-                                          image->height, kMaxEnvironmentSide)));
+                        path,
+                        fmt::format("'{}' is {}x{}: empty or more than {} pixels per side", ref, image->width,
+                                    image->height, kMaxEnvironmentSide)));
   env.kind = Environment::Kind::Map;
   env.mapPath = file->string();
   env.width = image->width;
@@ -269,9 +275,12 @@ Status readEnvironmentMap(const Reader& r, const std::string& ref, const std::st
 Status readEnvironment(const Reader& r, const json& j, Environment& env) {
   const std::string path = "environment";
   if (j.is_string()) {
-    if (j == "black") env.kind = Environment::Kind::Black;
-    else if (j == "sky") env.kind = Environment::Kind::Sky;
-    else return r.error(path, "must be \"black\", \"sky\" or an object");
+    if (j == "black")
+      env.kind = Environment::Kind::Black;
+    else if (j == "sky")
+      env.kind = Environment::Kind::Sky;
+    else
+      return r.error(path, "must be \"black\", \"sky\" or an object");
     return okStatus();
   }
   RAYSTER_TRY(r.object(j, path, {"map", "sky", "intensity", "rotation"}));
@@ -329,7 +338,7 @@ Result<json> parseJson(const fs::path& path) {
   }
 }
 
-} // namespace
+}  // namespace
 
 Result<Scene> loadSceneFile(const fs::path& path) {
   Result<json> parsed = parseJson(path);
@@ -346,8 +355,8 @@ Result<Scene> loadSceneFile(const fs::path& path) {
   // Scene-level settings are read first so that they take precedence over what models bring.
   if (root.contains("environment")) RAYSTER_TRY(readEnvironment(r, root["environment"], scene.environment));
   RAYSTER_TRY(r.vec(root, "ambient", "", scene.ambient));
-  RAYSTER_TRY(r.require(glm::all(glm::greaterThanEqual(scene.ambient, glm::vec3(0.0f))), "ambient",
-                        "must not be negative"));
+  RAYSTER_TRY(
+      r.require(glm::all(glm::greaterThanEqual(scene.ambient, glm::vec3(0.0f))), "ambient", "must not be negative"));
   Result<const json*> cameraPath = r.array(root, "cameraPath", "");
   if (!cameraPath) return cameraPath.error();
   RAYSTER_TRY(readCameraPath(r, **cameraPath, scene.cameraPath));
@@ -373,4 +382,4 @@ Result<Scene> loadSceneFile(const fs::path& path) {
   return scene;
 }
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

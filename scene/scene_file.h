@@ -14,4 +14,4 @@ namespace rayster::scene {
 // The file's cameras come before any the models bring, so camera 0 is the author's.
 Result<Scene> loadSceneFile(const std::filesystem::path& path);
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

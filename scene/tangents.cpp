@@ -9,14 +9,15 @@ glm::vec3 anyPerpendicular(glm::vec3 n) {
   glm::vec3 a = std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
   return glm::normalize(glm::cross(a, n));
 }
-} // namespace
+}  // namespace
 
 void generateTangents(Primitive& prim) {
   const size_t n = prim.positions.size();
   prim.tangents.assign(n, glm::vec4(0.0f));
   if (prim.uvs.size() != n || prim.normals.size() != n) {
     for (size_t i = 0; i < n; ++i)
-      prim.tangents[i] = glm::vec4(anyPerpendicular(prim.normals.size() == n ? prim.normals[i] : glm::vec3(0, 1, 0)), 1);
+      prim.tangents[i] =
+          glm::vec4(anyPerpendicular(prim.normals.size() == n ? prim.normals[i] : glm::vec3(0, 1, 0)), 1);
     return;
   }
   std::vector<glm::vec3> tan(n, glm::vec3(0.0f)), bitan(n, glm::vec3(0.0f));
@@ -44,4 +45,4 @@ void generateTangents(Primitive& prim) {
   }
 }
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

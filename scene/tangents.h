@@ -7,4 +7,4 @@ namespace rayster::scene {
 // normal, handedness in w). Without UVs, an arbitrary frame around the normal (w = 1).
 void generateTangents(Primitive& prim);
 
-} // namespace rayster::scene
+}  // namespace rayster::scene

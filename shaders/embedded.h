@@ -13,4 +13,4 @@ std::span<const uint32_t> get(std::string_view name);
 // pipelines again after overriding). Not thread-safe: call between frames.
 void setOverride(std::string_view name, std::vector<uint32_t> words);
 std::span<const uint32_t> overrideOf(std::string_view name);  // empty: none
-} // namespace rayster::shaders
+}  // namespace rayster::shaders

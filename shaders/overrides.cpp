@@ -10,7 +10,7 @@ std::map<std::string, std::vector<uint32_t>, std::less<>>& overrides() {
   static std::map<std::string, std::vector<uint32_t>, std::less<>> table;
   return table;
 }
-} // namespace
+}  // namespace
 
 void setOverride(std::string_view name, std::vector<uint32_t> words) {
   overrides()[std::string(name)] = std::move(words);
@@ -20,4 +20,4 @@ std::span<const uint32_t> overrideOf(std::string_view name) {
   const auto it = overrides().find(name);
   return it == overrides().end() ? std::span<const uint32_t>{} : std::span<const uint32_t>(it->second);
 }
-} // namespace rayster::shaders
+}  // namespace rayster::shaders

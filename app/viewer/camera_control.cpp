@@ -25,7 +25,7 @@ glm::vec3 turn(glm::vec3 dir, glm::vec3 up, float yaw, float pitch) {
   return (flat * std::cos(target) + up * std::sin(target)) * len;
 }
 
-} // namespace
+}  // namespace
 
 void CameraControl::reset(const scene::Camera& camera) {
   camera_ = camera;
@@ -62,7 +62,8 @@ bool CameraControl::update(GLFWwindow* window, float dt, float scroll, bool mous
   const glm::vec3 camUp = glm::normalize(glm::cross(right3, forward));
   if (mode == CameraMode::Orbit) {
     if (left && delta != glm::vec2(0.0f)) {
-      camera_.position = camera_.target - turn(forward, up, -delta.x * kTurnRadiansPerPixel, delta.y * kTurnRadiansPerPixel);
+      camera_.position =
+          camera_.target - turn(forward, up, -delta.x * kTurnRadiansPerPixel, delta.y * kTurnRadiansPerPixel);
       moved = true;
     }
     if ((right || middle) && delta != glm::vec2(0.0f)) {
@@ -78,7 +79,8 @@ bool CameraControl::update(GLFWwindow* window, float dt, float scroll, bool mous
     }
   } else {
     if ((right || left) && delta != glm::vec2(0.0f)) {
-      camera_.target = camera_.position + turn(forward, up, -delta.x * kTurnRadiansPerPixel, -delta.y * kTurnRadiansPerPixel);
+      camera_.target =
+          camera_.position + turn(forward, up, -delta.x * kTurnRadiansPerPixel, -delta.y * kTurnRadiansPerPixel);
       moved = true;
     }
     if (scroll != 0.0f) flySpeed *= std::pow(kWheelSpeedFactor, scroll);
@@ -100,4 +102,4 @@ bool CameraControl::update(GLFWwindow* window, float dt, float scroll, bool mous
   return moved;
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

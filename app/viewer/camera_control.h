@@ -29,4 +29,4 @@ class CameraControl {
   bool dragging_ = false;
 };
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -32,7 +32,7 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImag
 
 bool isBgr(VkFormat f) { return f == VK_FORMAT_B8G8R8A8_UNORM || f == VK_FORMAT_B8G8R8A8_SRGB; }
 
-} // namespace
+}  // namespace
 
 Presenter::Presenter(rhi::Context& ctx, VkExtent2D size, bool vsync)
     : ctx_(ctx), swapchain_(ctx, size, vsync), commands_(ctx) {
@@ -103,8 +103,9 @@ bool Presenter::present(const rhi::Image& rendered, ImDrawData* ui, Image8* capt
   const VkExtent2D e = swapchain_.extent();
   VkCommandBuffer cmd = commands_.begin();
   if (shown) {
-    const rhi::ImageDesc desc{VK_FORMAT_R8G8B8A8_UNORM, uint32_t(shown->width), uint32_t(shown->height), 1,
-                              VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT};
+    const rhi::ImageDesc desc{
+        VK_FORMAT_R8G8B8A8_UNORM, uint32_t(shown->width), uint32_t(shown->height), 1,
+        VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT};
     if (!shownImage_ || !(shownImage_.desc() == desc)) shownImage_ = rhi::Image(ctx_, desc, "debug-view");
     if (!shownStaging_ || shownStaging_.size() < shown->rgba.size())
       shownStaging_ = rhi::Buffer(ctx_, shown->rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, rhi::MemoryUsage::Upload,
@@ -131,8 +132,8 @@ bool Presenter::present(const rhi::Image& rendered, ImDrawData* ui, Image8* capt
   blit.srcOffsets[1] = {int32_t(frame.desc().width), int32_t(frame.desc().height), 1};
   blit.dstOffsets[1] = {int32_t(e.width), int32_t(e.height), 1};
   const bool sameSize = frame.desc().width == e.width && frame.desc().height == e.height;
-  vkCmdBlitImage(cmd, frame.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                 1, &blit, sameSize ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
+  vkCmdBlitImage(cmd, frame.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, sameSize ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
   imageBarrier(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -152,7 +153,8 @@ bool Presenter::present(const rhi::Image& rendered, ImDrawData* ui, Image8* capt
   if (capture) {
     const VkDeviceSize bytes = VkDeviceSize(e.width) * e.height * 4;
     if (!captureBuffer_ || captureBuffer_.size() < bytes)
-      captureBuffer_ = rhi::Buffer(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "screenshot");
+      captureBuffer_ =
+          rhi::Buffer(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "screenshot");
     imageBarrier(cmd, target, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, stage, access, VK_PIPELINE_STAGE_2_COPY_BIT,
                  VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferImageCopy region{};
@@ -192,4 +194,4 @@ bool Presenter::present(const rhi::Image& rendered, ImDrawData* ui, Image8* capt
   return presented;
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -43,4 +43,4 @@ class Presenter {
   rhi::Image shownImage_;
 };
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -42,7 +42,7 @@ float enterBox(glm::vec3 origin, glm::vec3 dir, scene::Aabb box) {
   return t0 > 0.0f && t0 <= t1 ? t0 : std::numeric_limits<float>::infinity();
 }
 
-} // namespace
+}  // namespace
 
 Trs decompose(const glm::mat4& m) {
   Trs t;
@@ -108,4 +108,4 @@ glm::vec3 dragOffset(const scene::Camera& cam, glm::vec3 point, glm::vec2 delta,
   return (right * delta.x - up * delta.y) * unitsPerPixel;
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

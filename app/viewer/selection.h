@@ -32,4 +32,4 @@ struct Selection {
   bool edited = false;    // the panel or a drag changed trs: the viewer sends it to the renderer
 };
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -30,7 +30,7 @@ std::string quote(const std::string& s) {
   return q + "'";
 }
 
-} // namespace
+}  // namespace
 
 ShaderReloader::ShaderReloader(fs::path glslc, fs::path shaderDir)
     : glslc_(std::move(glslc)), dir_(std::move(shaderDir)), times_(scan()) {}
@@ -57,8 +57,10 @@ ShaderReloadResult ShaderReloader::poll(bool force) {
   for (const auto& [path, time] : times) {
     const auto old = times_.find(path);
     if (old != times_.end() && old->second == time) continue;
-    if (shaderName(path).empty()) includeChanged = true;
-    else changed.push_back(path);
+    if (shaderName(path).empty())
+      includeChanged = true;
+    else
+      changed.push_back(path);
   }
   times_ = std::move(times);
   if (includeChanged) {
@@ -113,9 +115,9 @@ ShaderReloadResult ShaderReloader::compileAs(const fs::path& source, const std::
   // The flags of cmake/shaders.cmake; includes resolve against the source tree's shaders/.
   std::string flags;
   for (const std::string& d : defines) flags += " " + quote("-D" + d);
-  const std::string cmd = quote(glslc_.string()) + " -fshader-stage=" + stage + " --target-env=vulkan1.3 -O -g" + flags +
-                          " -I " + quote(dir_.string()) + " -o " + quote(out.string()) + " " + quote(source.string()) +
-                          " 2>&1";
+  const std::string cmd = quote(glslc_.string()) + " -fshader-stage=" + stage + " --target-env=vulkan1.3 -O -g" +
+                          flags + " -I " + quote(dir_.string()) + " -o " + quote(out.string()) + " " +
+                          quote(source.string()) + " 2>&1";
   std::string output;
   if (FILE* pipe = popen(cmd.c_str(), "r")) {
     char buf[4096];
@@ -145,4 +147,4 @@ ShaderReloadResult ShaderReloader::compileAs(const fs::path& source, const std::
   return result;
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

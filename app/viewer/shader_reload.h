@@ -44,4 +44,4 @@ class ShaderReloader {
   std::chrono::steady_clock::time_point lastPoll_{};
 };
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -20,7 +20,7 @@ constexpr float kPanelWidth = 300.0f;
 
 void checkResult(VkResult r) { VK_CHECK(r); }
 
-} // namespace
+}  // namespace
 
 Ui::Ui(rhi::Context& ctx, GLFWwindow* window, VkRenderPass pass, uint32_t minImages, uint32_t images) : ctx_(ctx) {
   IMGUI_CHECKVERSION();
@@ -149,7 +149,7 @@ bool restarts(const render::RenderSettings& a, const render::RenderSettings& b) 
   return false;
 }
 
-} // namespace
+}  // namespace
 
 bool Ui::build(PanelState& st, CameraControl& camera, scene::Scene& scene, const std::string& device) {
   ImGui_ImplVulkan_NewFrame();
@@ -189,7 +189,8 @@ bool Ui::build(PanelState& st, CameraControl& camera, scene::Scene& scene, const
     int mode = int(camera.mode);
     ImGui::Combo("control", &mode, "orbit\0fly (WASD/QE)\0");
     camera.mode = CameraMode(mode);
-    if (camera.mode == CameraMode::Fly) ImGui::SliderFloat("speed", &camera.flySpeed, 0.01f, 100.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    if (camera.mode == CameraMode::Fly)
+      ImGui::SliderFloat("speed", &camera.flySpeed, 0.01f, 100.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
     if (ImGui::Button("frame scene (F)")) st.frameScene = true;
     ImGui::SameLine();
     if (ImGui::Button("screenshot (F12)")) st.screenshot = true;
@@ -243,12 +244,14 @@ bool Ui::build(PanelState& st, CameraControl& camera, scene::Scene& scene, const
     }
     std::vector<float> gpu(st.gpuHistory.begin(), st.gpuHistory.end());
     if (!gpu.empty())
-      ImGui::PlotLines("##gpu", gpu.data(), int(gpu.size()), 0, "GPU ms per frame", 0.0f, FLT_MAX, {kPanelWidth - 20, 60});
+      ImGui::PlotLines("##gpu", gpu.data(), int(gpu.size()), 0, "GPU ms per frame", 0.0f, FLT_MAX,
+                       {kPanelWidth - 20, 60});
   }
   ImGui::PopItemWidth();
   ImGui::End();
   // Render settings that change the image restart the run; vsync and the camera do not.
-  s.aovs = st.debugView ? std::vector<std::string>{render::aovNames()[size_t(st.debugView - 1)]} : std::vector<std::string>{};
+  s.aovs = st.debugView ? std::vector<std::string>{render::aovNames()[size_t(st.debugView - 1)]}
+                        : std::vector<std::string>{};
   return before.aovs != s.aovs || restarts(before, s);
 }
 
@@ -257,4 +260,4 @@ void recordHistory(std::deque<float>& history, float value) {
   while (history.size() > kHistoryFrames) history.pop_front();
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -24,14 +24,14 @@ namespace rayster::app {
 struct PanelState {
   render::RenderSettings settings;  // edits restart the run (histories reset)
   bool vsync = true;
-  bool playPath = false;   // follow the scene's camera path
-  int namedCamera = -1;    // set when a named camera is picked: the viewer jumps to it
-  bool frameScene = false; // "frame the scene" pressed
-  bool screenshot = false; // "screenshot" pressed
+  bool playPath = false;       // follow the scene's camera path
+  int namedCamera = -1;        // set when a named camera is picked: the viewer jumps to it
+  bool frameScene = false;     // "frame the scene" pressed
+  bool screenshot = false;     // "screenshot" pressed
   bool lightsChanged = false;  // a light of the scene was edited in place
   int debugView = 0;           // 0: the final image; i: render::aovNames()[i - 1], read back each frame
   Selection selection;         // the picked instance (click in the viewport)
-  std::string message;     // errors and notices, shown in red at the top
+  std::string message;         // errors and notices, shown in red at the top
   // Statistics of the last frames.
   std::vector<std::pair<std::string, double>> passes;
   std::deque<float> gpuHistory, cpuHistory;  // ms, rolling
@@ -61,4 +61,4 @@ class Ui {
   bool frameOpen_ = false;  // between build() and draw()
 };
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -72,4 +72,4 @@ int viewCommand(ViewCommand& v, bool validation, const std::string& device, bool
   return runViewer(o);
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

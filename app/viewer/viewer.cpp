@@ -5,10 +5,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
-#include <functional>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -371,8 +371,8 @@ class ViewerSession {
   // --screenshot after the last frame, or F12: the window as shown (.png; F12 also the linear
   // frame as .exr), or the HDR frame (.exr). Ends the run. Returns the exit code of a failed write.
   std::optional<int> writeScreenshot(const Image8& captured, bool lastFrame) {
-    std::string path = lastFrame && !o_.screenshot.empty() ? o_.screenshot
-                                                           : "rayster-screenshot-" + std::to_string(frame_) + ".png";
+    std::string path =
+        lastFrame && !o_.screenshot.empty() ? o_.screenshot : "rayster-screenshot-" + std::to_string(frame_) + ".png";
     const bool exr = std::filesystem::path(path).extension() == ".exr";
     render::RenderOutput out = renderer_->endRun();
     restart_ = true;
@@ -429,7 +429,7 @@ class ViewerSession {
 #endif
 };
 
-} // namespace
+}  // namespace
 
 int runViewer(const ViewOptions& o) {
   auto loaded = scene::loadScene(o.scene);
@@ -437,7 +437,11 @@ int runViewer(const ViewOptions& o) {
   auto scene = std::make_unique<scene::Scene>(std::move(*loaded));
   Window window(int(o.width), int(o.height), "Rayster");
   if (!window.ok()) return fail(makeError(ExitCode::NoDevice, "{}", window.error()));
-  rhi::ContextOptions co{o.validation, true, o.device, o.debugLabels, Window::requiredInstanceExtensions(),
+  rhi::ContextOptions co{o.validation,
+                         true,
+                         o.device,
+                         o.debugLabels,
+                         Window::requiredInstanceExtensions(),
                          [&](VkInstance i, VkSurfaceKHR* s) { return window.createSurface(i, s); }};
   auto ctx = rhi::Context::create(co);
   if (!ctx) return fail(ctx.error());
@@ -455,4 +459,4 @@ int runViewer(const ViewOptions& o) {
   return 0;
 }
 
-} // namespace rayster::app
+}  // namespace rayster::app

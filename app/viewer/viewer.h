@@ -23,7 +23,7 @@ struct ViewOptions {
     uint32_t frame, width, height;
   };
   std::vector<Resize> resizes;  // --resize-at F:WxH
-  std::string debugView;  // --debug-view NAME: start showing this stage (render::aovNames())
+  std::string debugView;        // --debug-view NAME: start showing this stage (render::aovNames())
   bool hideUi = false;
   bool vsync = true;
   bool exrFloat = false;  // --exr-float: screenshot EXRs with 32-bit float channels
@@ -45,4 +45,4 @@ struct ViewCommand {
 void addViewCommand(CLI::App& cli, ViewCommand& view);
 int viewCommand(ViewCommand& view, bool validation, const std::string& device, bool debugLabels);
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -15,7 +15,7 @@ void onError(int, const char* description) { gLastGlfwError = description; }
 
 Window* self(GLFWwindow* w) { return static_cast<Window*>(glfwGetWindowUserPointer(w)); }
 
-} // namespace
+}  // namespace
 
 Window::Window(int width, int height, const char* title) {
   glfwSetErrorCallback(onError);
@@ -83,4 +83,4 @@ float Window::takeScroll() {
 
 std::vector<std::string> Window::takeDrops() { return std::move(drops_); }
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -42,4 +42,4 @@ class Window {
   std::vector<std::string> drops_;
 };
 
-} // namespace rayster::app
+}  // namespace rayster::app

@@ -126,9 +126,7 @@ void cullLate(graph::RenderGraph& graph, const FrameInputs& in, const CulledDraw
         b.write(culled.visibility, graph::Use::StorageReadWriteCompute);
         b.read(culled.hiz, graph::Use::StorageReadCompute);
       },
-      [culled, &in](graph::PassContext& pc) {
-        dispatchCull(pc, in, culled, gpu::kCullFrustum | gpu::kCullLate);
-      });
+      [culled, &in](graph::PassContext& pc) { dispatchCull(pc, in, culled, gpu::kCullFrustum | gpu::kCullLate); });
 }
 
 void buildDepthPyramid(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle depth,

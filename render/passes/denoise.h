@@ -56,7 +56,7 @@ inline constexpr uint32_t kShadowAtrousSmallLayers = 2;
 // copied into the passes, so a temporary will do.
 struct DenoiseInputs {
   rhi::PipelineLibrary& pipelines;  // the passes create their compute pipelines on first use
-  VkSampler nearest;  // inputs are read with texelFetch only
+  VkSampler nearest;                // inputs are read with texelFetch only
   VkExtent2D size;
 };
 

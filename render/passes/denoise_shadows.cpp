@@ -20,7 +20,9 @@ ShadowDenoised shadowTemporal(graph::RenderGraph& graph, const DenoiseInputs& in
       [&](graph::PassBuilder& b) {
         const VkSampler n = in.nearest;
         b.pipeline(in.pipelines.compute("shadow_temporal.comp"));
-        b.bind("surfaceTex", surface.current, n).bind("prevSurfaceTex", surface.previous, n).bind("motionTex", motion, n);
+        b.bind("surfaceTex", surface.current, n)
+            .bind("prevSurfaceTex", surface.previous, n)
+            .bind("motionTex", motion, n);
         b.bind("rawTex", raw, n).bind("historyTex", history.previous, n);
         b.bind("outHistory", history.next).bind("outVariance", variance);
       },
@@ -45,7 +47,8 @@ graph::ImageHandle shadowAtrous(graph::RenderGraph& graph, const DenoiseInputs& 
       name + "-atrous-" + std::to_string(step),
       [&](graph::PassBuilder& b) {
         const VkSampler n = in.nearest;
-        b.pipeline(in.pipelines.compute(lights <= kShadowAtrousSmallLayers ? "shadow_atrous_2.comp" : "shadow_atrous.comp"));
+        b.pipeline(
+            in.pipelines.compute(lights <= kShadowAtrousSmallLayers ? "shadow_atrous_2.comp" : "shadow_atrous.comp"));
         b.bind("surfaceTex", surface, n).bind("inputTex", input, n).bind("varianceTex", variance, n);
         b.bind("outVisibility", out);
       },

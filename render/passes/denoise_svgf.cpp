@@ -32,8 +32,12 @@ graph::ImageHandle svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& 
       [&](graph::PassBuilder& b) {
         const VkSampler n = in.nearest;
         b.pipeline(in.pipelines.compute("svgf_temporal.comp"));
-        b.bind("surfaceTex", surface.current, n).bind("prevSurfaceTex", surface.previous, n).bind("motionTex", motion, n);
-        b.bind("rawTex", raw, n).bind("colorHistoryTex", color.previous, n).bind("momentsHistoryTex", moments.previous, n);
+        b.bind("surfaceTex", surface.current, n)
+            .bind("prevSurfaceTex", surface.previous, n)
+            .bind("motionTex", motion, n);
+        b.bind("rawTex", raw, n)
+            .bind("colorHistoryTex", color.previous, n)
+            .bind("momentsHistoryTex", moments.previous, n);
         b.bind("outColor", color.next).bind("outMoments", moments.next).bind("outColorVariance", out);
       },
       [size = in.size, state](graph::PassContext& pc) {

@@ -24,4 +24,4 @@ void updateTlas(graph::RenderGraph& graph, const FrameInputs& in, bool refit) {
       [&tlas, refit](graph::PassContext& pc) { tlas.record(pc.cmd, refit); });
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -10,7 +10,7 @@ namespace rayster::render {
 namespace {
 constexpr VkImageUsageFlags kTargetUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
                                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-} // namespace
+}  // namespace
 
 // Both producers create the shared targets with one description, so the transient pool hands the
 // same images to either.
@@ -20,14 +20,13 @@ GBuffer createGBufferTargets(graph::RenderGraph& graph, VkExtent2D size, bool tr
     return graph.createImage(name, {format, size.width, size.height, 1, kTargetUsage}, light ? kRadianceImage : 0u);
   };
   GBuffer gb;
-  gb.depth = traced ? graph.createImage("gbuffer-depth-traced",
-                                        {kTracedDepthFormat, size.width, size.height, 1,
-                                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                             VK_IMAGE_USAGE_TRANSFER_SRC_BIT})
-                    : graph.createImage("gbuffer-depth",
-                                        {kDepthFormat, size.width, size.height, 1,
-                                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                             VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+  gb.depth =
+      traced ? graph.createImage("gbuffer-depth-traced", {kTracedDepthFormat, size.width, size.height, 1,
+                                                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                                              VK_IMAGE_USAGE_TRANSFER_SRC_BIT})
+             : graph.createImage("gbuffer-depth", {kDepthFormat, size.width, size.height, 1,
+                                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
+                                                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
   gb.normals = target("gbuffer-normals", kNormalFormat);
   gb.albedo = target("gbuffer-albedo", kAlbedoFormat);
   gb.material = target("gbuffer-material", kMaterialFormat);
@@ -110,8 +109,9 @@ void drawGBuffer(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer
           const uint32_t list = (late ? 2u : 0u) + type;
           const rhi::Pipeline& pipe = type == 1 ? *spheres : *triangles;
           pc.bindWithGlobals(pipe);
-          pipe.push(pc.cmd, gpu::GBufferDrawPush{in.scene.drawRecords.address(),
-                                                 pc.buffer(culled.drawIds).address() + list * maxDraws * sizeof(uint32_t)});
+          pipe.push(pc.cmd,
+                    gpu::GBufferDrawPush{in.scene.drawRecords.address(),
+                                         pc.buffer(culled.drawIds).address() + list * maxDraws * sizeof(uint32_t)});
           vkCmdDrawIndirectCount(pc.cmd, pc.buffer(culled.commands).handle(),
                                  list * maxDraws * sizeof(VkDrawIndirectCommand), pc.buffer(culled.counts).handle(),
                                  list * sizeof(uint32_t), maxDraws, sizeof(VkDrawIndirectCommand));
@@ -137,4 +137,4 @@ GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
   return gb;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -28,4 +28,4 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
   return gb;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -13,7 +13,7 @@ namespace rayster::rhi {
 class Buffer;
 class PipelineLibrary;
 class Sampler;
-} // namespace rayster::rhi
+}  // namespace rayster::rhi
 
 namespace rayster::render {
 
@@ -59,7 +59,7 @@ struct GBuffer {
   // RGBA8: the dielectric lobe of KHR_materials_specular, encodeSpecular(F0 tint, strength)
   // (lib/common.glsl); with .a of `emissive` it gives F0 and F90 (lib/brdf.glsl).
   graph::ImageHandle specular;
-  graph::ImageHandle id;        // R32_UINT instance row, kBackgroundId for sky
+  graph::ImageHandle id;  // R32_UINT instance row, kBackgroundId for sky
   // RG16F uvCurrent − uvPrevious (unjittered; docs/techniques.md §2): the history of a pixel is at
   // uv − motion. Camera and object motion for geometry; 0 on the background, whose (camera)
   // motion lib/motion.glsl computes from the matrices.
@@ -156,12 +156,12 @@ graph::ImageHandle resolveTaa(graph::RenderGraph& graph, const FrameInputs& in, 
 // The HDR input is already exposed (sources are pre-exposed, lib/frame.glsl): no exposure here.
 struct ToneSettings {
   Tonemapper op = Tonemapper::Aces;
-  uint32_t seed = 0;      // of the ±0.5 LSB dither
-  bool dither = true;     // off only where tests compare exact 8-bit values
+  uint32_t seed = 0;   // of the ±0.5 LSB dither
+  bool dither = true;  // off only where tests compare exact 8-bit values
 };
 graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle hdr,
                            const ToneSettings& tone);
 // Copies an image into a host-visible buffer and makes it visible to the host.
 void readback(graph::RenderGraph& graph, graph::ImageHandle image, graph::BufferHandle buffer);
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -24,4 +24,4 @@ graph::ImageHandle tracePaths(graph::RenderGraph& graph, const FrameInputs& in, 
   return acc.mean;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -27,4 +27,4 @@ RasterConstants rasterConstants(graph::RenderGraph& graph, const FrameInputs& in
 graph::ImageHandle screenSpaceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                        graph::ImageHandle lit);
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -104,8 +104,7 @@ RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, co
   RawTwinImages t;
   const uint64_t pixels = uint64_t(in.size.width) * in.size.height;
   const Reads surface = {{"depthTex", gb.depth}, {"normalTex", gb.normals}};
-  if (effects.ao)
-    t.ao = traceTwin(graph, in, "raw-rt-ao", "rt-ao", pixels, "raw-ao", surface, "outAo", "raw_ao.rgen");
+  if (effects.ao) t.ao = traceTwin(graph, in, "raw-rt-ao", "rt-ao", pixels, "raw-ao", surface, "outAo", "raw_ao.rgen");
   if (effects.direct)
     t.direct = traceTwin(graph, in, "raw-rt-direct", "rt-direct", pixels, "raw-direct", surface, "outVisibility",
                          "raw_direct.rgen");

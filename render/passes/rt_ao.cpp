@@ -19,20 +19,25 @@ graph::ImageHandle traceAo(graph::RenderGraph& graph, const FrameInputs& in, con
                            graph::ImageHandle into) {
   // A layer of an array image, so the shadow denoiser takes it unchanged: the shadow image's AO
   // layer (one denoiser run for lights and AO), or an image of its own.
-  graph::ImageHandle ao = into.valid() ? into
-                                       : graph.createImage("ao-raw", {kVisibilityFormat, in.size.width, in.size.height, 1,
-                                                                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                                                          VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                                                      true});
+  graph::ImageHandle ao = into.valid()
+                              ? into
+                              : graph.createImage("ao-raw", {kVisibilityFormat, in.size.width, in.size.height, 1,
+                                                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                                                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                                             true});
   const rhi::RayTracingPipeline& pipe = aoPipeline(in.pipelines);
   graph.addPass(
       "rt-ao",
       [&](graph::PassBuilder& b) {
-        b.pipeline(pipe).bind("tlas", in.tlas).bind("depthTex", gb.depth).bind("normalTex", gb.normals).bind("outAo", ao);
+        b.pipeline(pipe)
+            .bind("tlas", in.tlas)
+            .bind("depthTex", gb.depth)
+            .bind("normalTex", gb.normals)
+            .bind("outAo", ao);
         b.rays(uint64_t(in.size.width) * in.size.height);  // one occlusion ray per pixel; none on the sky
       },
       [&pipe, size = in.size](graph::PassContext& pc) { pipe.trace(pc.cmd, size.width, size.height); });
   return ao;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

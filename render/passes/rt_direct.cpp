@@ -5,10 +5,11 @@
 namespace rayster::render {
 
 graph::ImageHandle traceDirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb) {
-  graph::ImageHandle out = graph.createImage(
-      "direct-raw", {kRadianceFormat, in.size.width, in.size.height, 1,
-                     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
-      kRadianceImage);
+  graph::ImageHandle out =
+      graph.createImage("direct-raw",
+                        {kRadianceFormat, in.size.width, in.size.height, 1,
+                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+                        kRadianceImage);
   const rhi::RayTracingPipeline& pipe = in.pipelines.rayTracing("direct.rgen", [] {
     rhi::RayTracingPipelineDesc d;
     d.raygen = "direct.rgen";
@@ -28,4 +29,4 @@ graph::ImageHandle traceDirect(graph::RenderGraph& graph, const FrameInputs& in,
   return out;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

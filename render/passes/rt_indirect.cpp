@@ -18,10 +18,11 @@ uint64_t indirectLaunch(VkExtent2D size, bool quarter) {
 
 graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                  graph::ImageHandle surface, bool quarter) {
-  graph::ImageHandle out = graph.createImage(
-      "indirect-raw", {kRadianceFormat, in.size.width, in.size.height, 1,
-                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
-      kRadianceImage);
+  graph::ImageHandle out =
+      graph.createImage("indirect-raw",
+                        {kRadianceFormat, in.size.width, in.size.height, 1,
+                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+                        kRadianceImage);
   const rhi::RayTracingPipeline& pipe = in.pipelines.rayTracing("indirect.rgen", [] {
     rhi::RayTracingPipelineDesc d;
     d.raygen = "indirect.rgen";
@@ -43,8 +44,10 @@ graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& i
   graph.addPass(
       "rt-indirect-fill",
       [&](graph::PassBuilder& b) { b.pipeline(fill).bind("indirect", out).bind("surfaceTex", surface); },
-      [size = in.size](graph::PassContext& pc) { vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1); });
+      [size = in.size](graph::PassContext& pc) {
+        vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
+      });
   return out;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

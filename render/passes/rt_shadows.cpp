@@ -30,4 +30,4 @@ graph::ImageHandle traceShadows(graph::RenderGraph& graph, const FrameInputs& in
   return vis;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

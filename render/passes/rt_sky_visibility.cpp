@@ -15,12 +15,12 @@ const PassSetting kSwitch{passSwitch("sky-visibility", "Effects",
                                      "sky-visibility-denoised): the fraction of each pixel's hemisphere that sees "
                                      "the sky; the lit image is unchanged",
                                      false)};
-} // namespace
+}  // namespace
 
 graph::ImageHandle traceSkyVisibility(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb) {
-  const graph::ImageHandle out = graph.createImage(
-      "sky-visibility-raw", {kVisibilityFormat, in.size.width, in.size.height, 1,
-                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true});
+  const graph::ImageHandle out =
+      graph.createImage("sky-visibility-raw", {kVisibilityFormat, in.size.width, in.size.height, 1,
+                                               VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true});
   // Visibility rays: the shadow rays' miss shader and hit groups.
   const rhi::RayTracingPipeline& pipe = in.pipelines.rayTracing("sky_visibility.rgen", [] {
     rhi::RayTracingPipelineDesc d;
@@ -40,4 +40,4 @@ graph::ImageHandle traceSkyVisibility(graph::RenderGraph& graph, const FrameInpu
   return out;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -8,10 +8,11 @@ namespace rayster::render {
 
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t bounces,
                                  uint32_t lightsPerHit) {
-  graph::ImageHandle out = graph.createImage(
-      "specular-raw", {kRadianceFormat, in.size.width, in.size.height, 1,
-                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
-      kRadianceImage);
+  graph::ImageHandle out =
+      graph.createImage("specular-raw",
+                        {kRadianceFormat, in.size.width, in.size.height, 1,
+                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+                        kRadianceImage);
   const rhi::RayTracingPipeline& pipe = in.pipelines.rayTracing("specular.rgen", [] {
     rhi::RayTracingPipelineDesc d;
     d.raygen = "specular.rgen";
@@ -36,8 +37,10 @@ graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& i
       [&](graph::PassBuilder& b) {
         b.pipeline(fill).bind("specular", out).bind("depthTex", gb.depth).bind("materialTex", gb.material);
       },
-      [size = in.size](graph::PassContext& pc) { vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1); });
+      [size = in.size](graph::PassContext& pc) {
+        vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
+      });
   return out;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

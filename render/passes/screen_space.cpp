@@ -6,11 +6,12 @@
 namespace rayster::render {
 
 RasterConstants rasterConstants(graph::RenderGraph& graph, const FrameInputs& in) {
-  constexpr VkImageUsageFlags kUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                       VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  constexpr VkImageUsageFlags kUsage =
+      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   RasterConstants c;
   c.ao = graph.createImage("raster-ao", {kVisibilityFormat, in.size.width, in.size.height, 1, kUsage, true});
-  c.zero = graph.createImage("raster-zero", {kRadianceFormat, in.size.width, in.size.height, 1, kUsage}, kRadianceImage);
+  c.zero =
+      graph.createImage("raster-zero", {kRadianceFormat, in.size.width, in.size.height, 1, kUsage}, kRadianceImage);
   graph.addPass(
       "raster-constants",
       [&](graph::PassBuilder& b) {
@@ -25,10 +26,11 @@ RasterConstants rasterConstants(graph::RenderGraph& graph, const FrameInputs& in
 
 graph::ImageHandle screenSpaceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                        graph::ImageHandle lit) {
-  graph::ImageHandle out = graph.createImage(
-      "ssr", {kRadianceFormat, in.size.width, in.size.height, 1,
-              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
-      kRadianceImage);
+  graph::ImageHandle out =
+      graph.createImage("ssr",
+                        {kRadianceFormat, in.size.width, in.size.height, 1,
+                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+                        kRadianceImage);
   graph.addPass(
       "ssr",
       [&](graph::PassBuilder& b) {
@@ -36,8 +38,10 @@ graph::ImageHandle screenSpaceSpecular(graph::RenderGraph& graph, const FrameInp
         bindSurface(b, gb);
         b.bind("litTex", lit, in.linear.handle()).bind("outSpecular", out);
       },
-      [size = in.size](graph::PassContext& pc) { vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1); });
+      [size = in.size](graph::PassContext& pc) {
+        vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
+      });
   return out;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

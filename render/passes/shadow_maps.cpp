@@ -22,13 +22,13 @@ void setShadowCulling(VkCommandBuffer cmd, const GpuScene::Draw& d, const gpu::I
   vkCmdSetFrontFace(cmd, mirrored ? VK_FRONT_FACE_COUNTER_CLOCKWISE : VK_FRONT_FACE_CLOCKWISE);
 }
 
-} // namespace
+}  // namespace
 
 graph::ImageHandle renderShadowAtlas(graph::RenderGraph& graph, const FrameInputs& in, const ShadowAtlas& atlas) {
   const VkExtent2D size{atlas.columns * atlas.tileSize, atlas.rows * atlas.tileSize};
-  graph::ImageHandle depth = graph.createImage(
-      "shadow-atlas", {kDepthFormat, size.width, size.height, 1,
-                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+  graph::ImageHandle depth =
+      graph.createImage("shadow-atlas", {kDepthFormat, size.width, size.height, 1,
+                                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
   auto describe = [](bool spheres) {
     rhi::GraphicsPipelineDesc d;
     d.vertex = spheres ? "shadow_sphere.vert" : "shadow_map.vert";
@@ -85,9 +85,9 @@ graph::ImageHandle renderShadowAtlas(graph::RenderGraph& graph, const FrameInput
 graph::ImageHandle resolveShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                   graph::ImageHandle atlas, const rhi::Buffer& setup, uint32_t lights) {
   graph::ImageHandle visibility = graph.createImage(
-      "shadow-visibility", {kVisibilityFormat, in.size.width, in.size.height, std::max(lights, 1u),
-                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                            true});
+      "shadow-visibility",
+      {kVisibilityFormat, in.size.width, in.size.height, std::max(lights, 1u),
+       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, true});
   graph.addPass(
       "shadow-resolve",
       [&](graph::PassBuilder& b) {
@@ -95,8 +95,10 @@ graph::ImageHandle resolveShadows(graph::RenderGraph& graph, const FrameInputs& 
         b.bind("depthTex", gb.depth).bind("normalTex", gb.normals).bind("atlasTex", atlas);
         b.bind("ShadowBlock", setup).bind("outVisibility", visibility);
       },
-      [size = in.size](graph::PassContext& pc) { vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1); });
+      [size = in.size](graph::PassContext& pc) {
+        vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
+      });
   return visibility;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

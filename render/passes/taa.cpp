@@ -11,7 +11,7 @@ namespace {
 // Mirrors of the flags in shaders/taa.comp.glsl.
 constexpr uint32_t kTaaHistoryValid = 1u;
 constexpr uint32_t kTaaMotion = 2u;
-} // namespace
+}  // namespace
 
 graph::ImageHandle resolveTaa(graph::RenderGraph& graph, const FrameInputs& in, const TaaInputs& taa) {
   // Without a motion image the depth stands in for it: bound, never read.
@@ -20,7 +20,9 @@ graph::ImageHandle resolveTaa(graph::RenderGraph& graph, const FrameInputs& in, 
       "taa",
       [&](graph::PassBuilder& b) {
         b.pipeline(in.pipelines.compute("taa.comp"));
-        b.bind("currentTex", taa.current).bind("depthTex", taa.depth).bind("historyTex", taa.history, in.linear.handle());
+        b.bind("currentTex", taa.current)
+            .bind("depthTex", taa.depth)
+            .bind("historyTex", taa.history, in.linear.handle());
         b.bind("motionTex", motion).bind("outHistory", taa.next);
       },
       [taa, size = in.size](graph::PassContext& pc) {
@@ -34,4 +36,4 @@ graph::ImageHandle resolveTaa(graph::RenderGraph& graph, const FrameInputs& in, 
   return taa.next;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -7,11 +7,13 @@ namespace rayster::render {
 
 graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle hdr,
                            const ToneSettings& tone) {
-  graph::ImageHandle ldr = graph.createImage(
-      "ldr", {kLdrFormat, in.size.width, in.size.height, 1, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+  graph::ImageHandle ldr = graph.createImage("ldr", {kLdrFormat, in.size.width, in.size.height, 1,
+                                                     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
   graph.addPass(
       "tonemap",
-      [&](graph::PassBuilder& b) { b.pipeline(in.pipelines.compute("tonemap.comp")).bind("hdrTex", hdr).bind("outLdr", ldr); },
+      [&](graph::PassBuilder& b) {
+        b.pipeline(in.pipelines.compute("tonemap.comp")).bind("hdrTex", hdr).bind("outLdr", ldr);
+      },
       [tone, size = in.size](graph::PassContext& pc) {
         pc.push(gpu::TonemapPush{{size.width, size.height}, tone.seed, uint32_t(tone.op), tone.dither ? 1.0f : 0.0f});
         vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
@@ -32,12 +34,13 @@ void readback(graph::RenderGraph& graph, graph::ImageHandle image, graph::Buffer
         VkBufferImageCopy region{};
         region.imageSubresource = {img.aspect(), 0, 0, img.desc().layers};
         region.imageExtent = {img.desc().width, img.desc().height, 1};
-        vkCmdCopyImageToBuffer(pc.cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, pc.buffer(buffer).handle(), 1,
-                               &region);
+        vkCmdCopyImageToBuffer(pc.cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, pc.buffer(buffer).handle(),
+                               1, &region);
       });
   // The host reads after the frame's timeline value: make the copy visible to it.
   graph.addPass(
-      "host-visible", [&](graph::PassBuilder& b) {
+      "host-visible",
+      [&](graph::PassBuilder& b) {
         b.read(buffer, graph::Use::HostRead);
         b.sideEffect();
         b.kind(graph::PassKind::Readback);
@@ -45,4 +48,4 @@ void readback(graph::RenderGraph& graph, graph::ImageHandle image, graph::Buffer
       [](graph::PassContext&) {});
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

@@ -52,8 +52,8 @@ RAYSTER_CONST float kSigmaDepth = 1.0;
 RAYSTER_CONST float kSigmaNormal = 128.0;
 RAYSTER_CONST int kSigmaNormalLog2 = 7;  // the à-trous loops square 7 times (lib/denoise.glsl)
 RAYSTER_CONST float kSigmaLuminance = 4.0;
-RAYSTER_CONST float kDepthEpsilon = 1.0e-4;       // keeps w_z finite on planes facing the camera
-RAYSTER_CONST float kLuminanceEpsilon = 1.0e-6;   // keeps w_l finite where the variance is 0
+RAYSTER_CONST float kDepthEpsilon = 1.0e-4;      // keeps w_z finite on planes facing the camera
+RAYSTER_CONST float kLuminanceEpsilon = 1.0e-6;  // keeps w_l finite where the variance is 0
 // The shadow denoiser's layers per invocation: one per shadowed light plus the AO layer (the hybrid
 // denoises AO as one more visibility layer: one guide fetch per tap serves all of them).
 RAYSTER_CONST uint kMaxShadowDenoiseLayers = kMaxShadowLights + 1u;

@@ -42,9 +42,9 @@ struct TaaPush {
 // tonemap.comp
 struct TonemapPush {
   uvec2 size;
-  uint seed;    // of the ±0.5 LSB dither
-  uint op;      // Tonemapper
-  float dither; // 1 on, 0 off
+  uint seed;     // of the ±0.5 LSB dither
+  uint op;       // Tonemapper
+  float dither;  // 1 on, 0 off
 };
 
 // raster_constants.comp
@@ -59,7 +59,7 @@ static_assert(sizeof(ShadowSpherePush) == 88);
 static_assert(sizeof(TaaPush) == 16);
 static_assert(sizeof(TonemapPush) == 20);
 static_assert(sizeof(SizePush) == 8);
-} // namespace rayster::gpu
+}  // namespace rayster::gpu
 #endif
 
 #endif

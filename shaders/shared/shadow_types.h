@@ -11,18 +11,18 @@ namespace rayster::gpu {
 
 RAYSTER_CONST uint kShadowCascades = 4u;
 RAYSTER_CONST uint kMaxShadowViews = 6u * kMaxShadowLights;  // every light a cube
-RAYSTER_CONST uint kShadowNone = 0u;      // no shadow map: visibility 1
-RAYSTER_CONST uint kShadowCascaded = 1u;  // directional: kShadowCascades orthographic views
-RAYSTER_CONST uint kShadowSpot = 2u;      // one perspective view
-RAYSTER_CONST uint kShadowCube = 3u;      // six 90° perspective views (+X, -X, +Y, -Y, +Z, -Z)
+RAYSTER_CONST uint kShadowNone = 0u;                         // no shadow map: visibility 1
+RAYSTER_CONST uint kShadowCascaded = 1u;                     // directional: kShadowCascades orthographic views
+RAYSTER_CONST uint kShadowSpot = 2u;                         // one perspective view
+RAYSTER_CONST uint kShadowCube = 3u;                         // six 90° perspective views (+X, -X, +Y, -Y, +Z, -Z)
 
 struct ShadowView {
   mat4 clipFromWorld;  // the light's clip space, reversed Z
   vec4 tile;           // atlas uv of the tile: offset xy, scale zw
   float nearPlane;     // perspective: planes of the depth linearisation; orthographic: depth range
   float farPlane;
-  float texelWorld;    // a texel's world size: orthographic absolute, perspective at unit distance
-  uint perspective;    // 1: perspective, 0: orthographic
+  float texelWorld;  // a texel's world size: orthographic absolute, perspective at unit distance
+  uint perspective;  // 1: perspective, 0: orthographic
 };
 
 struct ShadowLight {
@@ -35,10 +35,10 @@ struct ShadowLight {
 struct ShadowSetup {
   ShadowView views[kMaxShadowViews];
   ShadowLight lights[kMaxShadowLights];
-  vec4 cascadeEnds;     // view depth (along the camera's forward axis) where each cascade ends
-  vec4 cameraForward;   // xyz: unit forward axis of the camera
-  vec2 atlasTexel;      // 1 / atlas size in texels
-  float pcfRadius;      // filter radius in texels (soft edges)
+  vec4 cascadeEnds;    // view depth (along the camera's forward axis) where each cascade ends
+  vec4 cameraForward;  // xyz: unit forward axis of the camera
+  vec2 atlasTexel;     // 1 / atlas size in texels
+  float pcfRadius;     // filter radius in texels (soft edges)
   uint viewCount;
 };
 
@@ -47,7 +47,7 @@ static_assert(sizeof(ShadowView) == 96);
 static_assert(sizeof(ShadowLight) == 16);
 static_assert(offsetof(ShadowSetup, lights) == 96 * kMaxShadowViews);
 static_assert(sizeof(ShadowSetup) == 96 * kMaxShadowViews + 16 * kMaxShadowLights + 48);
-} // namespace rayster::gpu
+}  // namespace rayster::gpu
 #endif
 
 #endif

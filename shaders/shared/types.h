@@ -35,14 +35,14 @@ RAYSTER_CONST uint kDefaultSpecularBounces = 7u;  // the loop's historical bound
 // the environment approximation over this much roughness (lib/specular_weight.glsl); past
 // threshold + blend the specular pass traces nothing (render/gpu_scene.h SpecularSurfaces).
 RAYSTER_CONST float kGlossyBlend = 0.1;
-RAYSTER_CONST uint kDfgSize = 32u;         // split-sum DFG table, kDfgSize² texels (render/dfg.h)
+RAYSTER_CONST uint kDfgSize = 32u;  // split-sum DFG table, kDfgSize² texels (render/dfg.h)
 RAYSTER_CONST uint kBackgroundId = 0xFFFFFFFFu;
 RAYSTER_CONST uint kNoTexture = 0xFFFFFFFFu;
 
 // MaterialRecord::flags
 RAYSTER_CONST uint kMaterialDoubleSided = 1u;
-RAYSTER_CONST uint kMaterialAlphaMask = 2u;   // alpha test against alphaCutoff (any-hit, discard)
-RAYSTER_CONST uint kMaterialAlphaBlend = 4u;  // stochastic (hashed) coverage, converges over frames
+RAYSTER_CONST uint kMaterialAlphaMask = 2u;        // alpha test against alphaCutoff (any-hit, discard)
+RAYSTER_CONST uint kMaterialAlphaBlend = 4u;       // stochastic (hashed) coverage, converges over frames
 RAYSTER_CONST uint kMaterialCullsBackFaces = 16u;  // scene::Material::cullsBackFaces(): rays ignore back faces
 // KHR_materials_unlit: only emits its base colour (× texture × vertex colour), scatters nothing.
 // Surface evaluation turns it into emission with zero albedo and specular (lib/surface.glsl), so no
@@ -58,13 +58,14 @@ RAYSTER_CONST uint kHitGroupTriangles = 0u;
 RAYSTER_CONST uint kHitGroupSpheres = 1u;
 
 // FrameConstants::sceneFlags
-RAYSTER_CONST uint kSceneAnyHit = 1u;  // some geometry runs any-hit (alpha tests, back-face rejection): rays may not be forced opaque
+RAYSTER_CONST uint kSceneAnyHit =
+    1u;  // some geometry runs any-hit (alpha tests, back-face rejection): rays may not be forced opaque
 
 // Tonemap operators (tonemap.comp push constant; render::Tonemapper mirrors them in C++)
 RAYSTER_CONST uint kTonemapAces = 0u;
 RAYSTER_CONST uint kTonemapNeutral = 1u;
 // FrameConstants::effectFlags
-RAYSTER_CONST uint kEffectAo = 1u;        // ray-traced ambient occlusion scales ambient/environment light
+RAYSTER_CONST uint kEffectAo = 1u;  // ray-traced ambient occlusion scales ambient/environment light
 RAYSTER_CONST uint kEffectIndirect = 2u;
 RAYSTER_CONST uint kEffectPrefilteredEnv = 4u;  // untraced glossy light from the GGX-prefiltered environment
 // With kEffectIndirect: rt-indirect traces one pixel of each 2×2 block per frame (a quarter-size
@@ -83,7 +84,7 @@ RAYSTER_CONST uint kEnvironmentMap = 2u;
 struct Vertex {
   vec3 position;  // offset 0: the BLAS reads R32G32B32 positions with this stride
   vec3 normal;
-  vec4 tangent;   // xyz tangent, w bitangent sign
+  vec4 tangent;  // xyz tangent, w bitangent sign
   vec2 uv0;
   vec2 uv1;
 };
@@ -153,15 +154,15 @@ struct MaterialRecord {
   TextureSlot metallicRoughnessTexture;
   TextureSlot normalTexture;
   TextureSlot occlusionTexture;
-  TextureSlot emissiveTexture;   // sRGB view
+  TextureSlot emissiveTexture;       // sRGB view
   TextureSlot specularTexture;       // KHR_materials_specular: A × specular
   TextureSlot specularColorTexture;  // sRGB view: RGB × specularColor
 };
 
 struct LightRecord {
   vec3 position;
-  float radius;  // sphere light radius; 0: hard point light
-  vec3 radiance; // colour × intensity: radiant intensity (point/spot) or irradiance (directional)
+  float radius;   // sphere light radius; 0: hard point light
+  vec3 radiance;  // colour × intensity: radiant intensity (point/spot) or irradiance (directional)
   uint type;
   vec3 direction;  // the direction light travels (spot, directional)
   float angularRadius;
@@ -180,10 +181,10 @@ struct EmissiveTriangle {
   uint material;
   vec3 p2;
   float frontSign;  // +1, or −1 under a mirroring transform: cross(p1 − p0, p2 − p0) · frontSign faces front
-  vec2 uv0;  // TEXCOORD_0 at the corners: the emissive texture's lookup
+  vec2 uv0;         // TEXCOORD_0 at the corners: the emissive texture's lookup
   vec2 uv1;
   vec2 uv2;
-  uint geometry;   // GeometryRecord row and triangle: vertex colours of unlit emitters
+  uint geometry;  // GeometryRecord row and triangle: vertex colours of unlit emitters
   uint primitive;
 };
 
@@ -193,24 +194,24 @@ struct FrameConstants {
   vec4 cameraPosition;  // xyz; w unused
   vec4 ambient;         // rgb: uniform ambient radiance
   uvec2 size;
-  uint frameIndex;      // advances every frame; feeds the RNG
-  uint seed;            // --seed
+  uint frameIndex;  // advances every frame; feeds the RNG
+  uint seed;        // --seed
   uint lightCount;
   uint shadowLightCount;  // lights with a visibility layer (<= kMaxShadowLights)
   float exposure;         // linear multiplier, 2^EV
   uint environmentKind;
-  vec4 environment;       // rgb: intensity × (1,1,1) scale; w: rotation about +Y (radians)
+  vec4 environment;  // rgb: intensity × (1,1,1) scale; w: rotation about +Y (radians)
   vec3 skyZenith;
-  uint environmentSlot;   // bindless slot of the equirect map
+  uint environmentSlot;  // bindless slot of the equirect map
   vec3 skyHorizon;
-  uint sceneFlags;        // kScene* bits
+  uint sceneFlags;  // kScene* bits
   vec3 skyGround;
-  uint prefilteredSlot;   // bindless slot of the prefiltered (GGX) environment levels; ~0u: none
-  vec4 irradianceSh[9];   // environment irradiance, order-2 spherical harmonics (rgb)
-  uint64_t geometries;  // GeometryRecord[]
-  uint64_t instances;   // InstanceRecord[]
-  uint64_t materials;   // MaterialRecord[]
-  uint64_t lights;      // LightRecord[]
+  uint prefilteredSlot;  // bindless slot of the prefiltered (GGX) environment levels; ~0u: none
+  vec4 irradianceSh[9];  // environment irradiance, order-2 spherical harmonics (rgb)
+  uint64_t geometries;   // GeometryRecord[]
+  uint64_t instances;    // InstanceRecord[]
+  uint64_t materials;    // MaterialRecord[]
+  uint64_t lights;       // LightRecord[]
   // clipFromWorld and worldFromClip above carry this frame's sub-pixel jitter (TAA), so raster and
   // traced primaries follow it. Motion and reprojection use these unjittered ones (docs/techniques.md §2).
   mat4 unjitteredClipFromWorld;
@@ -226,11 +227,11 @@ struct FrameConstants {
   uint64_t emissiveTriangles;  // EmissiveTriangle[] (render/gpu_emissive.cpp)
   uint64_t environmentCdf;     // float[]: cell probabilities, row CDFs, marginal CDF (render/gpu_environment.cpp)
   uint emissiveTriangleCount;
-  float emissiveArea;          // Σ area of the emissive triangles
-  uint environmentCdfWidth;    // cells of the environment CDF (0: no environment sampling)
+  float emissiveArea;        // Σ area of the emissive triangles
+  uint environmentCdfWidth;  // cells of the environment CDF (0: no environment sampling)
   uint environmentCdfHeight;
-  uint maxDepth;               // path vertices after the camera (--max-depth)
-  uint maxSpecularBounces;     // specular.rgen traces at most this many rays per path (1..kMaxSpecularBounces)
+  uint maxDepth;            // path vertices after the camera (--max-depth)
+  uint maxSpecularBounces;  // specular.rgen traces at most this many rays per path (1..kMaxSpecularBounces)
   // Layer of the AO image that rt-ao writes and lighting reads: shadowLightCount when AO is on in
   // the hybrid (AO is the shadow denoiser's last layer, renderer_frame.cpp), else 0 (its own image).
   uint aoLayer;
@@ -313,7 +314,7 @@ static_assert(sizeof(DrawRecord) == 40);
 static_assert(offsetof(DrawRecord, aabbMin) == 16);
 static_assert(sizeof(CullPush) == 56);
 static_assert(sizeof(HizPush) == 16);
-} // namespace rayster::gpu
+}  // namespace rayster::gpu
 #endif
 
 #endif

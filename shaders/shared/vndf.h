@@ -73,7 +73,7 @@ RAYSTER_FN float ggxVndfPdf(vec3 v, vec3 h, float alpha) {
 }
 
 #ifdef __cplusplus
-} // namespace rayster::gpu
+}  // namespace rayster::gpu
 #endif
 
 #endif

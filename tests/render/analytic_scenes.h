@@ -131,7 +131,8 @@ inline void writeGltf(const std::filesystem::path& dir, const std::string& name,
       fmt::format(R"("KHR_materials_emissive_strength": {{"emissiveStrength": {}}})", peak > 0 ? peak : 1.0f);
   if (mat.transmission > 0)
     extensions += fmt::format(R"(, "KHR_materials_transmission": {{"transmissionFactor": {}}})", mat.transmission);
-  if (mat.transmission > 0 || mat.ior != 1.5f) extensions += fmt::format(R"(, "KHR_materials_ior": {{"ior": {}}})", mat.ior);
+  if (mat.transmission > 0 || mat.ior != 1.5f)
+    extensions += fmt::format(R"(, "KHR_materials_ior": {{"ior": {}}})", mat.ior);
   if (mat.thickness > 0)
     extensions += fmt::format(R"(, "KHR_materials_volume": {{"thicknessFactor": {}}})", mat.thickness);
   if (mat.unlit) extensions += R"(, "KHR_materials_unlit": {})";
@@ -145,8 +146,8 @@ inline void writeGltf(const std::filesystem::path& dir, const std::string& name,
   };
   if (mat.specular != 1.0f || mat.specularColor != glm::vec3(1.0f) || !mat.specularTexture.empty() ||
       !mat.specularColorTexture.empty()) {
-    std::string spec = fmt::format(R"("specularFactor": {}, "specularColorFactor": {})", mat.specular,
-                                   vec3Json(mat.specularColor));
+    std::string spec =
+        fmt::format(R"("specularFactor": {}, "specularColorFactor": {})", mat.specular, vec3Json(mat.specularColor));
     if (!mat.specularTexture.empty())
       spec += fmt::format(R"(, "specularTexture": {{"index": {}}})", textureIndex(mat.specularTexture));
     if (!mat.specularColorTexture.empty())
@@ -161,21 +162,22 @@ inline void writeGltf(const std::filesystem::path& dir, const std::string& name,
       textureList += fmt::format(R"({}{{"source": {}}})", i ? ", " : "", i);
     }
     textures = fmt::format(R"(,
-  "images": [{}], "textures": [{}])", imageList, textureList);
+  "images": [{}], "textures": [{}])",
+                           imageList, textureList);
   }
   std::string colorAttribute, colorParts;
   if (!mesh.colors.empty()) {
     colorAttribute = R"(, "COLOR_0": 3)";
-    colorParts = fmt::format(R"(, {{"bufferView": 3, "componentType": 5121, "normalized": true, "count": {}, "type": "VEC4"}})",
-                             vertices);
+    colorParts = fmt::format(
+        R"(, {{"bufferView": 3, "componentType": 5121, "normalized": true, "count": {}, "type": "VEC4"}})", vertices);
   }
   const std::string colorView =
-      mesh.colors.empty() ? ""
-                          : fmt::format(R"(, {{"buffer": 0, "byteOffset": {}, "byteLength": {}}})", colorOffset,
-                                        mesh.colors.size());
-  const std::string alpha = mat.alphaMode == "OPAQUE"
-                                ? ""
-                                : fmt::format(R"("alphaMode": "{}", "alphaCutoff": {}, )", mat.alphaMode, mat.alphaCutoff);
+      mesh.colors.empty()
+          ? ""
+          : fmt::format(R"(, {{"buffer": 0, "byteOffset": {}, "byteLength": {}}})", colorOffset, mesh.colors.size());
+  const std::string alpha = mat.alphaMode == "OPAQUE" ? ""
+                                                      : fmt::format(R"("alphaMode": "{}", "alphaCutoff": {}, )",
+                                                                    mat.alphaMode, mat.alphaCutoff);
   std::string json = fmt::format(
       R"({{
   "asset": {{"version": "2.0"}},

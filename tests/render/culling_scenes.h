@@ -37,4 +37,4 @@ f 13 14 15 16
   return file;
 }
 
-} // namespace rayster::test
+}  // namespace rayster::test

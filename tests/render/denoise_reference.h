@@ -96,7 +96,8 @@ inline std::vector<Surf> surfaces(const GBufferCpu& g, float zNear, float zFar) 
     s.id = g.id[i] & 0xFFFu;
     s.z = linearDepth(g.depth[i], zNear, zFar);
     s.sharp = g.material[i * 4] / 255.0f <= gpu::kSharpRoughness;
-    s.n = octDecode(vec2(snorm10(toSnorm10(snorm16(g.normals[i * 4]))), snorm10(toSnorm10(snorm16(g.normals[i * 4 + 1])))));
+    s.n = octDecode(
+        vec2(snorm10(toSnorm10(snorm16(g.normals[i * 4]))), snorm10(toSnorm10(snorm16(g.normals[i * 4 + 1])))));
   }
   addSlopes(out, g.w, g.h);
   return out;

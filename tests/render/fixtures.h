@@ -49,7 +49,7 @@ inline std::filesystem::path writeAlphaMaskGltf(const std::filesystem::path& dir
   (void)writePng(dir / "checker.png", checker);
 
   // Floor quad then the masked quad: position, normal, uv; indices.
-  std::vector<float> pos = {-3, 0, -3, 3, 0, -3, 3, 0, 3, -3, 0, 3,   -1, 0.2f, 0, 1, 0.2f, 0, 1, 2.2f, 0, -1, 2.2f, 0};
+  std::vector<float> pos = {-3, 0, -3, 3, 0, -3, 3, 0, 3, -3, 0, 3, -1, 0.2f, 0, 1, 0.2f, 0, 1, 2.2f, 0, -1, 2.2f, 0};
   std::vector<float> nrm = {0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
   std::vector<float> uv = {0, 0, 1, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 0, 0, 0};
   std::vector<uint16_t> idx = {0, 2, 1, 0, 3, 2, 0, 1, 2, 0, 2, 3};
@@ -84,8 +84,9 @@ inline std::filesystem::path writeAlphaMaskGltf(const std::filesystem::path& dir
   "textures": [{"source": 0, "sampler": 0}],
   "samplers": [{"magFilter": 9728, "minFilter": 9728}],
   "images": [{"uri": "checker.png"}],
-  "buffers": [{"byteLength": )" + std::to_string(buf.size()) + R"(, "uri": "data:application/octet-stream;base64,)" +
-                     base64(buf) + R"("}],
+  "buffers": [{"byteLength": )" +
+                     std::to_string(buf.size()) + R"(, "uri": "data:application/octet-stream;base64,)" + base64(buf) +
+                     R"("}],
   "bufferViews": [
     {"buffer": 0, "byteOffset": 0, "byteLength": 96},
     {"buffer": 0, "byteOffset": 96, "byteLength": 96},
@@ -133,7 +134,7 @@ inline std::filesystem::path writeEnvironmentSceneFile(const std::filesystem::pa
   return path;
 }
 
-} // namespace rayster::test
+}  // namespace rayster::test
 
 namespace rayster::test {
 
@@ -176,8 +177,9 @@ inline std::filesystem::path writeAnimatedGltf(const std::filesystem::path& dir)
   ],
   "animations": [{"name": "slide", "channels": [{"sampler": 0, "target": {"node": 1, "path": "translation"}}],
                   "samplers": [{"input": 6, "output": 7, "interpolation": "LINEAR"}]}],
-  "buffers": [{"byteLength": )" + std::to_string(buf.size()) + R"(, "uri": "data:application/octet-stream;base64,)" +
-                     base64(buf) + R"("}],
+  "buffers": [{"byteLength": )" +
+                     std::to_string(buf.size()) + R"(, "uri": "data:application/octet-stream;base64,)" + base64(buf) +
+                     R"("}],
   "bufferViews": [
     {"buffer": 0, "byteOffset": 0, "byteLength": 96},
     {"buffer": 0, "byteOffset": 96, "byteLength": 96},
@@ -201,4 +203,4 @@ inline std::filesystem::path writeAnimatedGltf(const std::filesystem::path& dir)
   return path;
 }
 
-} // namespace rayster::test
+}  // namespace rayster::test

@@ -41,5 +41,4 @@ inline void expectMatchesGolden(const Image8& actual, const std::string& name, c
       << dir;
 }
 
-
-} // namespace rayster::test
+}  // namespace rayster::test

@@ -51,9 +51,11 @@ inline RunResult runUnderXvfb(const std::string& args, const std::string& env = 
 }
 
 // Renders with `args` into dir/name.png, asserts success and a non-empty image of the given size.
-inline Image8 renderOk(const std::filesystem::path& dir, const std::string& name, const std::string& args, int w, int h) {
+inline Image8 renderOk(const std::filesystem::path& dir, const std::string& name, const std::string& args, int w,
+                       int h) {
   auto out = dir / (name + ".png");
-  RunResult r = runRayster("render " + args + " --size " + std::to_string(w) + "x" + std::to_string(h) + " -o " + out.string());
+  RunResult r =
+      runRayster("render " + args + " --size " + std::to_string(w) + "x" + std::to_string(h) + " -o " + out.string());
   EXPECT_EQ(r.exitCode, 0) << r.output;
   auto img = readPng(out);
   EXPECT_TRUE(img.ok()) << (img.ok() ? "" : img.error().message);
@@ -80,4 +82,4 @@ inline std::map<std::string, ImageF> renderAovs(const std::filesystem::path& dir
   return images;
 }
 
-} // namespace rayster::test
+}  // namespace rayster::test

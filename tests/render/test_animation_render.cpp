@@ -88,8 +88,8 @@ TEST_P(AnimationRender, MovingInstanceHasMotionVectors) {
 
 INSTANTIATE_TEST_SUITE_P(Producers, AnimationRender, ::testing::Values("raster", "rt"));
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test
 
 namespace rayster::test {
 namespace {
@@ -127,5 +127,5 @@ TEST(AnimationRender, MovingShadowLeavesNoTrail) {
   EXPECT_LT(ghosts, pixels / 200) << ghosts << " lit pixels still carry the old shadow";
 }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test

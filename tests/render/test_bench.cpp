@@ -81,8 +81,8 @@ TEST(BenchRun, JsonIsCompleteAndWellFormed) {
     EXPECT_TRUE(tracedSomething) << id;
     // --raw-rays: every ray-traced pass reports its share of the raw ray rate (its raw twin's time
     // over its own); no other pass does. Cornell: no many lights, so no rt-direct.
-    const std::set<std::string> twinned = {"gbuffer-traced", "rt-shadows", "rt-ao", "rt-direct", "rt-indirect",
-                                           "rt-specular"};
+    const std::set<std::string> twinned = {"gbuffer-traced", "rt-shadows",  "rt-ao",
+                                           "rt-direct",      "rt-indirect", "rt-specular"};
     std::set<std::string> withRaw;
     for (const json& p : c["passes"]) {
       const std::string name = p.value("name", "?");
@@ -113,7 +113,8 @@ TEST(BenchRun, JsonIsCompleteAndWellFormed) {
     const json& m = c["memory"];
     EXPECT_GT(m["transient_bytes"].get<uint64_t>(), 0u) << id;
     EXPECT_GT(m["history_bytes"].get<uint64_t>(), 0u) << id;
-    EXPECT_EQ(m["frame_bytes"].get<uint64_t>(), m["transient_bytes"].get<uint64_t>() + m["history_bytes"].get<uint64_t>())
+    EXPECT_EQ(m["frame_bytes"].get<uint64_t>(),
+              m["transient_bytes"].get<uint64_t>() + m["history_bytes"].get<uint64_t>())
         << id;
     EXPECT_LT(m["transient_bytes"].get<uint64_t>(), m["transient_unaliased_bytes"].get<uint64_t>())
         << id << ": aliasing must save memory in the hybrid frame";

@@ -50,7 +50,7 @@ int lineCount(const std::string& text) {
   return n;
 }
 
-} // namespace
+}  // namespace
 
 TEST(CompareCli, IdenticalImages) {
   Pair p = writePair(0);
@@ -102,8 +102,8 @@ TEST(CompareCli, JsonHasEveryFieldAndHeatmapIsWritten) {
 TEST(CompareCli, SelectedMetricsOnly) {
   Pair p = writePair(10);
   const fs::path json = p.dir / "r.json";
-  RunResult r = runRayster("compare " + p.ref.string() + " " + p.test.string() + " --metric psnr,rmse --json " +
-                           json.string());
+  RunResult r =
+      runRayster("compare " + p.ref.string() + " " + p.test.string() + " --metric psnr,rmse --json " + json.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const nlohmann::json j = readJson(json);
   EXPECT_TRUE(j["metrics"].contains("psnr"));
@@ -235,6 +235,7 @@ TEST(CompareCli, BadInputsGetOneLineErrors) {
   EXPECT_EQ(runRayster("compare " + ref).exitCode, 2);
   // A failed run leaves no output behind.
   const fs::path json = p.dir / "none.json";
-  EXPECT_EQ(runRayster("compare " + ref + " " + (p.dir / "small.png").string() + " --json " + json.string()).exitCode, 3);
+  EXPECT_EQ(runRayster("compare " + ref + " " + (p.dir / "small.png").string() + " --json " + json.string()).exitCode,
+            3);
   EXPECT_FALSE(fs::exists(json));
 }

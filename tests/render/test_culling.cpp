@@ -57,7 +57,6 @@ std::filesystem::path writeTopDownScene(const std::filesystem::path& dir) {
   return file;
 }
 
-
 TEST(Culling, OnAndOffRenderTheSameImage) {
   auto dir = testDir();
   for (const char* scene : {"builtin:whitted", "builtin:cornell", "builtin:spheres", "builtin:instances:64"}) {

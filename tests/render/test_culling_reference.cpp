@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "render/gpu_scene.h"
 #include "render/jitter.h"
@@ -25,7 +25,6 @@ namespace rayster::test {
 namespace {
 
 constexpr uint32_t kW = 128, kH = 72;
-
 
 // A validation-on context, the scene and its renderer; skips without a Vulkan device.
 struct CullScene {
@@ -132,11 +131,14 @@ Cull cpuCull(const render::GpuScene::Draw& d, const glm::mat4& clipFromObject, c
   }
   if (nearest >= 1.0f) return Cull::Visible;
   const glm::ivec2 size = hiz.sizes[0], last = size - 1;
-  const glm::ivec2 p0 = glm::clamp(glm::ivec2(glm::floor((lo * 0.5f + 0.5f) * glm::vec2(size))) - 1, glm::ivec2(0), last);
-  const glm::ivec2 p1 = glm::clamp(glm::ivec2(glm::floor((hi * 0.5f + 0.5f) * glm::vec2(size))) + 1, glm::ivec2(0), last);
+  const glm::ivec2 p0 =
+      glm::clamp(glm::ivec2(glm::floor((lo * 0.5f + 0.5f) * glm::vec2(size))) - 1, glm::ivec2(0), last);
+  const glm::ivec2 p1 =
+      glm::clamp(glm::ivec2(glm::floor((hi * 0.5f + 0.5f) * glm::vec2(size))) + 1, glm::ivec2(0), last);
   size_t level = 0;
   const int span = int(gpu::kHizFootprint) - 1;
-  while (level + 1 < hiz.levels.size() && ((p1.x >> level) - (p0.x >> level) > span || (p1.y >> level) - (p0.y >> level) > span))
+  while (level + 1 < hiz.levels.size() &&
+         ((p1.x >> level) - (p0.x >> level) > span || (p1.y >> level) - (p0.y >> level) > span))
     ++level;
   const glm::ivec2 t0(p0.x >> level, p0.y >> level), t1(p1.x >> level, p1.y >> level);
   float farthest = 1.0f;
@@ -188,7 +190,9 @@ TEST(CullingReference, GpuVisibilityMatchesCpuCullDrawByDraw) {
     outside += cpu == Cull::Outside, occluded += cpu == Cull::Occluded, visible += cpu == Cull::Visible;
     EXPECT_EQ(gpuVisible[i] != 0, cpu == Cull::Visible)
         << "draw " << i << " (instance row " << d.instance << "): CPU says "
-        << (cpu == Cull::Outside ? "outside the frustum" : cpu == Cull::Occluded ? "occluded" : "visible");
+        << (cpu == Cull::Outside    ? "outside the frustum"
+            : cpu == Cull::Occluded ? "occluded"
+                                    : "visible");
   }
   EXPECT_GE(outside, 8) << "the grid's outer columns lie outside the view";
   EXPECT_GE(occluded, 20) << "most of the grid is behind the wall";

@@ -62,5 +62,5 @@ TEST(WhittedRun, FrameMatchesGolden) {
 
 TEST(WhittedRun, StagesMatchGoldens) { expectStagesMatchGoldens(whittedRun(), "whitted", testDir()); }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test

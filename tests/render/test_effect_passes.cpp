@@ -23,10 +23,12 @@ struct Listing {
   std::map<std::string, std::string> sizes;  // image → "WxH" or "WxHxLAYERS"
   bool hasPass(const std::string& p) const { return passes.count(p) > 0; }
   bool anyPass(const std::string& part) const {
-    return std::any_of(passes.begin(), passes.end(), [&](const std::string& p) { return p.find(part) != std::string::npos; });
+    return std::any_of(passes.begin(), passes.end(),
+                       [&](const std::string& p) { return p.find(part) != std::string::npos; });
   }
   bool anyImage(const std::string& part) const {
-    return std::any_of(images.begin(), images.end(), [&](const std::string& i) { return i.find(part) != std::string::npos; });
+    return std::any_of(images.begin(), images.end(),
+                       [&](const std::string& i) { return i.find(part) != std::string::npos; });
   }
 };
 
@@ -74,12 +76,14 @@ class EffectPasses : public ::testing::Test {
 
   Listing list(const std::string& scene, const std::string& args) {
     const auto out = dir_ / "out.png";
-    RunResult r = runRayster("render " + scene + " --size 48x32 --frames 2 --timings --memory-report " + args +
-                             " -o " + out.string());
+    RunResult r = runRayster("render " + scene + " --size 48x32 --frames 2 --timings --memory-report " + args + " -o " +
+                             out.string());
     EXPECT_EQ(r.exitCode, 0) << args << "\n" << r.output;
     auto img = readPng(out);
     EXPECT_TRUE(img.ok()) << args;
-    if (img.ok()) EXPECT_FALSE(rejectEmpty(*img, 48, 32).has_value()) << args << ": " << rejectEmpty(*img, 48, 32).value_or("");
+    if (img.ok()) {
+      EXPECT_FALSE(rejectEmpty(*img, 48, 32).has_value()) << args << ": " << rejectEmpty(*img, 48, 32).value_or("");
+    }
     Listing l = parse(r.output);
     EXPECT_TRUE(l.hasPass("lighting") && l.hasPass("tonemap")) << args << "\n" << r.output;
     EXPECT_TRUE(l.images.count("hdr")) << args << "\n" << r.output;
@@ -91,8 +95,9 @@ class EffectPasses : public ::testing::Test {
 
 TEST_F(EffectPasses, EveryEffectOnRecordsItsPassesAndHistories) {
   const Listing l = list("builtin:whitted", "");
-  for (const char* p : {"rt-shadows", "rt-ao", "shadow-temporal", "rt-specular", "rt-specular-fill",
-                        "reflection-temporal", "rt-indirect", "rt-indirect-fill", "indirect-temporal", "denoise-surface"})
+  for (const char* p :
+       {"rt-shadows", "rt-ao", "shadow-temporal", "rt-specular", "rt-specular-fill", "reflection-temporal",
+        "rt-indirect", "rt-indirect-fill", "indirect-temporal", "denoise-surface"})
     EXPECT_TRUE(l.hasPass(p)) << p;
   for (const char* i : {"shadow-raw", "specular-raw", "indirect-raw", "surface", "shadow-history", "specular-history",
                         "indirect-history", "taa-history"})
@@ -149,9 +154,9 @@ TEST_F(EffectPasses, NothingSmoothToTraceRecordsNoSpecularPass) {
   // "Shadows only": the G-buffer, the shadow pass and its denoiser, lighting, TAA, tonemap.
   const Listing shadowsOnly = list(scene, "--ao off --indirect off");
   for (const std::string& p : shadowsOnly.passes) {
-    const bool expected = p.rfind("gbuffer-", 0) == 0 || p.rfind("cull", 0) == 0 || p == "visible" || p.rfind("hiz", 0) == 0 || p == "denoise-surface" ||
-                          p.rfind("shadow-", 0) == 0 || p == "rt-shadows" || p == "lighting" || p == "taa" ||
-                          p == "tonemap";
+    const bool expected = p.rfind("gbuffer-", 0) == 0 || p.rfind("cull", 0) == 0 || p == "visible" ||
+                          p.rfind("hiz", 0) == 0 || p == "denoise-surface" || p.rfind("shadow-", 0) == 0 ||
+                          p == "rt-shadows" || p == "lighting" || p == "taa" || p == "tonemap";
     EXPECT_TRUE(expected) << "shadows only recorded " << p;
   }
 }
@@ -160,10 +165,10 @@ TEST_F(EffectPasses, NothingSmoothToTraceRecordsNoSpecularPass) {
 TEST_F(EffectPasses, DenoiseOffLightsWithTheRawSignals) {
   auto off = renderAovs(dir_, "builtin:whitted --size 48x32 --frames 2 --denoise off",
                         {"reflection-raw", "reflection-denoised", "shadow-raw", "shadow-denoised"});
-  for (const auto& [raw, denoised] : {std::pair{"reflection-raw", "reflection-denoised"}, {"shadow-raw", "shadow-denoised"}})
+  for (const auto& [raw, denoised] :
+       {std::pair{"reflection-raw", "reflection-denoised"}, {"shadow-raw", "shadow-denoised"}})
     EXPECT_EQ(off[raw].rgba, off[denoised].rgba) << raw;
-  auto on = renderAovs(dir_, "builtin:whitted --size 48x32 --frames 2",
-                       {"reflection-raw", "reflection-denoised"});
+  auto on = renderAovs(dir_, "builtin:whitted --size 48x32 --frames 2", {"reflection-raw", "reflection-denoised"});
   EXPECT_NE(on["reflection-raw"].rgba, on["reflection-denoised"].rgba);
 }
 
@@ -189,11 +194,11 @@ TEST_F(EffectPasses, AnyGraphImageIsAnAov) {
   EXPECT_NE(unknown.output.find("unknown AOV 'no-such-image'"), std::string::npos) << unknown.output;
   EXPECT_NE(unknown.output.find("gbuffer-normals"), std::string::npos) << "the message lists the images";
   EXPECT_FALSE(std::filesystem::exists(dir_ / "bad.png")) << "no half-written output";
-  RunResult layer = runRayster("render builtin:whitted --size 48x32 --frames 1 --aov shadow-raw:7 -o " +
-                               (dir_ / "bad.png").string());
+  RunResult layer =
+      runRayster("render builtin:whitted --size 48x32 --frames 1 --aov shadow-raw:7 -o " + (dir_ / "bad.png").string());
   EXPECT_EQ(layer.exitCode, 2) << layer.output;
   EXPECT_NE(layer.output.find("has 2 layer(s)"), std::string::npos) << layer.output;
 }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test

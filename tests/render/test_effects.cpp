@@ -99,7 +99,8 @@ TEST(Ao, OpenPlaneIsUnoccluded) {
   auto scene = writeSceneFile(dir, {floorQuad(-50, 50, -50, 50, "white")}, true, {0, 3, 4}, {0, 0, 0});
   auto img = renderAovs(dir, scene.string(), "--frames 2 --ao-radius 100", "ao-raw,ao-denoised");
   for (const char* name : {"ao-raw", "ao-denoised"})
-    for (size_t i = 0; i < img[name].rgba.size(); i += 4) ASSERT_EQ(img[name].rgba[i], 1.0f) << name << " texel " << i / 4;
+    for (size_t i = 0; i < img[name].rgba.size(); i += 4)
+      ASSERT_EQ(img[name].rgba[i], 1.0f) << name << " texel " << i / 4;
 }
 
 // The hybrid denoises AO as the shadow denoiser's last layer: beside the scene's shadow layer, or
@@ -121,17 +122,17 @@ TEST(Ao, SameWithOrWithoutShadowLayersAndOneWhenOff) {
   EXPECT_LT(mean, 0.99) << "the whitted scene has contact occlusion";
   auto off = renderAovs(dir, "builtin:whitted", "--frames 2 --ao off", aovs);
   for (const char* name : {"ao-raw", "ao-denoised"})
-    for (size_t i = 0; i < off[name].rgba.size(); i += 4) ASSERT_EQ(off[name].rgba[i], 1.0f) << name << " texel " << i / 4;
+    for (size_t i = 0; i < off[name].rgba.size(); i += 4)
+      ASSERT_EQ(off[name].rgba[i], 1.0f) << name << " texel " << i / 4;
 }
 
 TEST(Ao, FloorBesideAWallIsHalfOccluded) {
   // An (almost) infinite wall at x = 0 over a floor at x > 0: with an unlimited radius, half of the
   // cosine lobe of every floor point faces the wall (and of every wall point, the floor): AO → 0.5.
   auto dir = testDir();
-  auto scene = writeSceneFile(dir,
-                              {floorQuad(0, 400, -400, 400, "white"),
-                               {{0, 0, -400}, {0, 0, 400}, {0, 400, 400}, {0, 400, -400}, "white"}},
-                              true, {3, 1.5f, 0}, {0.5f, 0.3f, 0});
+  auto scene = writeSceneFile(
+      dir, {floorQuad(0, 400, -400, 400, "white"), {{0, 0, -400}, {0, 0, 400}, {0, 400, 400}, {0, 400, -400}, "white"}},
+      true, {3, 1.5f, 0}, {0.5f, 0.3f, 0});
   auto img = renderAovs(dir, scene.string(), "--frames 16 --ao-radius 10000", "ao-denoised");
   EXPECT_NEAR(meanChannel(img["ao-denoised"], 0), 0.5, 0.03);
   // A short radius sees almost nothing but the corner itself.
@@ -160,10 +161,9 @@ TEST(Glossy, RoughnessZeroThroughVndfEqualsTheMirrorPath) {
   // the VNDF sampler (--mirror-roughness -1). At α = 0 the sampler returns the mirror normal and the
   // weight G2/G1 / (A + B) is 1, and the glossy sample draws from its own random stream.
   auto dir = testDir();
-  auto scene = writeSceneFile(dir,
-                              {floorQuad(-5, 5, -5, 5, "mirror"),
-                               {{-2, 0, -2}, {2, 0, -2}, {2, 2, -2}, {-2, 2, -2}, "grey"}},
-                              false, {0, 1.5f, 4}, {0, 0.5f, 0});
+  auto scene = writeSceneFile(
+      dir, {floorQuad(-5, 5, -5, 5, "mirror"), {{-2, 0, -2}, {2, 0, -2}, {2, 2, -2}, {-2, 2, -2}, "grey"}}, false,
+      {0, 1.5f, 4}, {0, 0.5f, 0});
   const std::string args = scene.string() + " --primary raster --frames 2 --seed 5";
   Image8 mirror = renderOk(dir, "mirror", args, kS, kS);
   Image8 vndf = renderOk(dir, "vndf", args + " --mirror-roughness -1", kS, kS);
@@ -182,5 +182,5 @@ TEST(Effects, OptionsAreChecked) {
   }
 }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test

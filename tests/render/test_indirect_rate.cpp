@@ -26,10 +26,9 @@ constexpr float kSkipped = 0.25f;  // raw_indirect.rgen's mark of a pixel anothe
 // `frames` frames of `scene` at w × h with --raw-rays and indirect light on; the AOVs by name.
 std::map<std::string, ImageF> render(const std::filesystem::path& dir, const std::string& scene, int w, int h,
                                      const std::string& args, const std::vector<std::string>& aovs) {
-  return renderAovs(dir,
-                    scene + " --primary raster --indirect on --size " + std::to_string(w) + "x" + std::to_string(h) +
-                        " " + args,
-                    aovs);
+  return renderAovs(
+      dir, scene + " --primary raster --indirect on --size " + std::to_string(w) + "x" + std::to_string(h) + " " + args,
+      aovs);
 }
 
 float at(const ImageF& img, int x, int y, int c = 0) { return img.pixel(x, y)[c]; }
@@ -40,8 +39,9 @@ TEST(IndirectRate, PassesReportOneInvocationPerBlockAtQuarterRate) {
   auto dir = testDir();
   for (const auto& [rate, invocations] : {std::pair{"full", 63ull * 47}, std::pair{"quarter", 32ull * 24}}) {
     const auto json = dir / (std::string(rate) + ".json");
-    RunResult r = runRayster("render builtin:cornell --size 63x47 --frames 1 --indirect on --raw-rays --indirect-rate " +
-                             std::string(rate) + " --json " + json.string() + " -o " + (dir / "out.png").string());
+    RunResult r =
+        runRayster("render builtin:cornell --size 63x47 --frames 1 --indirect on --raw-rays --indirect-rate " +
+                   std::string(rate) + " --json " + json.string() + " -o " + (dir / "out.png").string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
     int found = 0;
@@ -67,8 +67,10 @@ TEST(IndirectRate, QuarterTracesOnePixelPerBlockAndEveryPixelOverFourFrames) {
   size_t traced = 0, filled = 0;
   for (int frames = 1; frames <= 4; ++frames) {
     const std::string args = "--raw-rays --frames " + std::to_string(frames);
-    auto quarter = render(dir, "builtin:cornell", kW, kH, args + " --indirect-rate quarter", {"indirect-raw", "raw-indirect"});
-    auto full = render(dir, "builtin:cornell", kW, kH, args + " --indirect-rate full", {"indirect-raw", "raw-indirect"});
+    auto quarter =
+        render(dir, "builtin:cornell", kW, kH, args + " --indirect-rate quarter", {"indirect-raw", "raw-indirect"});
+    auto full =
+        render(dir, "builtin:cornell", kW, kH, args + " --indirect-rate full", {"indirect-raw", "raw-indirect"});
     ASSERT_EQ(quarter.size(), 2u);
     ASSERT_EQ(full.size(), 2u);
     std::set<std::pair<int, int>> offsets;
@@ -158,14 +160,18 @@ TEST(IndirectRate, StaticCameraQuarterRateConvergesToFullRate) {
   constexpr int kW = 64, kH = 48;
   const std::string frames = " --frames 64";
   auto full = render(dir, "builtin:cornell", kW, kH, "--indirect-rate full --seed 1" + frames, {"indirect-denoised"});
-  auto fullOther = render(dir, "builtin:cornell", kW, kH, "--indirect-rate full --seed 2" + frames, {"indirect-denoised"});
-  auto quarter = render(dir, "builtin:cornell", kW, kH, "--indirect-rate quarter --seed 2" + frames, {"indirect-denoised"});
-  ASSERT_TRUE(full.count("indirect-denoised") && fullOther.count("indirect-denoised") && quarter.count("indirect-denoised"));
+  auto fullOther =
+      render(dir, "builtin:cornell", kW, kH, "--indirect-rate full --seed 2" + frames, {"indirect-denoised"});
+  auto quarter =
+      render(dir, "builtin:cornell", kW, kH, "--indirect-rate quarter --seed 2" + frames, {"indirect-denoised"});
+  ASSERT_TRUE(full.count("indirect-denoised") && fullOther.count("indirect-denoised") &&
+              quarter.count("indirect-denoised"));
   const Diff noise = compare(fullOther["indirect-denoised"], full["indirect-denoised"]);
   const Diff d = compare(quarter["indirect-denoised"], full["indirect-denoised"]);
-  std::printf("[indirect-rate] mean E full %.4f %.4f %.4f, quarter %.4f %.4f %.4f; RMS quarter-full %.4f, "
-              "full seed 2 - seed 1 %.4f\n",
-              d.otherMean[0], d.otherMean[1], d.otherMean[2], d.mean[0], d.mean[1], d.mean[2], d.rms, noise.rms);
+  std::printf(
+      "[indirect-rate] mean E full %.4f %.4f %.4f, quarter %.4f %.4f %.4f; RMS quarter-full %.4f, "
+      "full seed 2 - seed 1 %.4f\n",
+      d.otherMean[0], d.otherMean[1], d.otherMean[2], d.mean[0], d.mean[1], d.mean[2], d.rms, noise.rms);
   ASSERT_GT(noise.rms, 0.0) << "two seeds gave the same image: nothing was traced";
   for (int c = 0; c < 3; ++c) {
     EXPECT_GT(d.otherMean[c], 0.05) << "no indirect light in channel " << c;

@@ -36,8 +36,8 @@ std::filesystem::path writeScene(const std::filesystem::path& dir, const std::ve
   bool first = true;
   for (const TestLight& t : lights)
     for (int c = 0; c < copies; ++c) {
-      l << (first ? "" : ",") << R"({"type": ")" << t.type << R"(", "position": [)" << t.x << "," << t.y << ","
-        << t.z << R"(], "direction": [0, -1, 0.2], "intensity": )" << t.intensity / copies
+      l << (first ? "" : ",") << R"({"type": ")" << t.type << R"(", "position": [)" << t.x << "," << t.y << "," << t.z
+        << R"(], "direction": [0, -1, 0.2], "intensity": )" << t.intensity / copies
         << (std::string(t.type) == "point" ? std::string(R"(, "radius": )") + std::to_string(t.radius) : "")
         << (std::string(t.type) == "spot" ? R"(, "innerConeAngle": 20, "outerConeAngle": 40)" : "") << "}";
       first = false;
@@ -57,7 +57,9 @@ ImageF renderHdr(const std::filesystem::path& dir, const std::string& name, cons
   if (!img.ok()) return {};
   auto ldr = readPng(png);
   EXPECT_TRUE(ldr.ok());
-  if (ldr.ok()) EXPECT_FALSE(rejectEmpty(*ldr, kW, kH).has_value()) << name;
+  if (ldr.ok()) {
+    EXPECT_FALSE(rejectEmpty(*ldr, kW, kH).has_value()) << name;
+  }
   return std::move(img).value();
 }
 
@@ -68,10 +70,10 @@ double meanLuminance(const ImageF& img) {
   return sum / (img.rgba.size() / 4);
 }
 
-const std::vector<TestLight> kEight = {
-    {"point", -2, 3, 1, 12, 0.3f}, {"point", 2, 2.5f, -1, 6, 0.1f}, {"point", 0, 4, -2, 20, 0.0f},
-    {"spot", 1, 3, 2, 30, 0},      {"point", -1, 1.5f, -2, 2, 0.2f}, {"point", 3, 1, 2, 4, 0.4f},
-    {"directional", 0, 0, 0, 0.6f, 0}, {"point", -3, 2, -3, 8, 0.5f}};
+const std::vector<TestLight> kEight = {{"point", -2, 3, 1, 12, 0.3f},     {"point", 2, 2.5f, -1, 6, 0.1f},
+                                       {"point", 0, 4, -2, 20, 0.0f},     {"spot", 1, 3, 2, 30, 0},
+                                       {"point", -1, 1.5f, -2, 2, 0.2f},  {"point", 3, 1, 2, 4, 0.4f},
+                                       {"directional", 0, 0, 0, 0.6f, 0}, {"point", -3, 2, -3, 8, 0.5f}};
 
 // Frames: 32 for the image with every light shadowed, 64 for one picked light per pixel. Measured
 // (lavapipe): mean ratios within 0.001 of 1 and relative MSE 0.0004-0.0016, as with 64 and 256
@@ -105,5 +107,5 @@ TEST(ManyLights, ResampledCandidatesStayUnbiasedBeyondSixteenLights) {
   EXPECT_LT(relMse(every, picked), 0.03);
 }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test

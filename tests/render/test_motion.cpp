@@ -55,8 +55,8 @@ TEST_P(Motion, CameraPanMatchesTheAnalyticMotion) {
   auto dir = testDir();
   auto scene = writePanScene(dir);
   // Frame 1 at 1 fps is one second along the path: the camera has moved kPan.
-  ImageF mv = renderMotion(dir, "pan", scene.string() + " --camera-path --path-fps 1 --frames 2 --primary " +
-                                           std::string(GetParam()));
+  ImageF mv = renderMotion(
+      dir, "pan", scene.string() + " --camera-path --path-fps 1 --frames 2 --primary " + std::string(GetParam()));
   // A point of the wall moves left on screen: uvNow − uvBefore = −pan / (visible width at distance).
   const float visibleWidth = 2.0f * kDistance * std::tan(kYFovDeg * 0.5f * 3.14159265f / 180.0f) * kW / kH;
   const float expected = -kPan / visibleWidth;
@@ -73,5 +73,5 @@ TEST_P(Motion, CameraPanMatchesTheAnalyticMotion) {
 
 INSTANTIATE_TEST_SUITE_P(Producers, Motion, ::testing::Values("raster", "rt"));
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test

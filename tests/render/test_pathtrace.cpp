@@ -66,8 +66,8 @@ TEST(PathTrace, LambertPlaneUnderPointLight) {
   s.models.push_back({"floor", unitQuad(), grey, glm::vec3(20, 20, 1), glm::vec3(-90, 0, 0), glm::vec3(0)});
   const float intensity = 10.0f;
   const glm::vec3 light(0, 2, 0);
-  s.lights = {fmt::format(R"({{"type": "point", "position": {}, "intensity": {}, "radius": 0}})", vec3Json(light),
-                          intensity)};
+  s.lights = {
+      fmt::format(R"({{"type": "point", "position": {}, "intensity": {}, "radius": 0}})", vec3Json(light), intensity)};
   s.camera = {{0, 4, 3}, {0, 0, 0}, 50};
   const int w = 64, h = 48;
   Rendered r = pathTrace(dir, "lambert", writeScene(dir, "lambert", s).string(), w, h, 16);
@@ -103,8 +103,8 @@ TEST(PathTrace, LambertPlaneUnderEmissiveSquare) {
   grey.ior = 1.0f;
   s.models.push_back({"floor", unitQuad(), grey, glm::vec3(20, 20, 1), glm::vec3(-90, 0, 0), glm::vec3(0)});
   const float le = 100.0f, side = 0.2f, height = 2.0f;
-  s.models.push_back({"lamp", unitQuad(), emitter(le), glm::vec3(side, side, 1), glm::vec3(90, 0, 0),
-                      glm::vec3(0, height, 0)});
+  s.models.push_back(
+      {"lamp", unitQuad(), emitter(le), glm::vec3(side, side, 1), glm::vec3(90, 0, 0), glm::vec3(0, height, 0)});
   s.lights = {darkLight()};
   s.camera = {{0, 4, 3}, {0, 0, 0}, 50};
   const int w = 64, h = 48;
@@ -179,8 +179,8 @@ TEST(PathTrace, FresnelF0AtIor150) {
     }
   ASSERT_GT(pixels, 1000);
   EXPECT_NEAR(sum / pixels, 0.04, 0.002);
-  std::printf("[pathtrace] Fresnel: %.5f (expected 0.04, Schlick within the 20° view cone) over %d px\n",
-              sum / pixels, pixels);
+  std::printf("[pathtrace] Fresnel: %.5f (expected 0.04, Schlick within the 20° view cone) over %d px\n", sum / pixels,
+              pixels);
 }
 
 TEST(PathTrace, SameSeedSameImageOtherSeedOtherImage) {
@@ -265,5 +265,5 @@ TEST(PathTrace, CornellConvergesNearHybrid) {
   std::printf("[pathtrace] cornell: mean |pathtrace - hybrid| = %.4f\n", d);
 }
 
-} // namespace
-} // namespace rayster::test::analytic
+}  // namespace
+}  // namespace rayster::test::analytic

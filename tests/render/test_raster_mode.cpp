@@ -90,7 +90,8 @@ TEST(RasterMode, SunCascadeMatchesTracedShadow) {
   auto dir = testDir();
   SceneSpec s;
   s.models.push_back(floorAt0(6.0f));
-  s.models.push_back({"blocker", unitQuad(), {glm::vec3(0.5f)}, glm::vec3(1), glm::vec3(-90, 0, 0), glm::vec3(0, 1, 0)});
+  s.models.push_back(
+      {"blocker", unitQuad(), {glm::vec3(0.5f)}, glm::vec3(1), glm::vec3(-90, 0, 0), glm::vec3(0, 1, 0)});
   s.lights = {R"({"type": "directional", "direction": [1, -1, 0], "intensity": 3, "angularRadius": 0})"};
   s.camera = {{2.5f, 5, 2}, {0.8f, 0, 0}, 50};
   const auto scene = writeScene(dir, "sun", s);
@@ -124,13 +125,15 @@ TEST(RasterMode, PenumbraGrowsWithLightRadius) {
   auto dir = testDir();
   SceneSpec s;
   s.models.push_back(floorAt0(6.0f));
-  s.models.push_back({"blocker", unitQuad(), {glm::vec3(0.5f)}, glm::vec3(1.2f), glm::vec3(-90, 0, 0), glm::vec3(0, 1, 0)});
+  s.models.push_back(
+      {"blocker", unitQuad(), {glm::vec3(0.5f)}, glm::vec3(1.2f), glm::vec3(-90, 0, 0), glm::vec3(0, 1, 0)});
   s.camera = {{0, 6, 0.01f}, {0, 0, 0}, 50};
   const int size = 64;
   int penumbra[2] = {};
   for (int i = 0; i < 2; ++i) {
     const float radius = i == 0 ? 0.0f : 0.4f;
-    s.lights = {fmt::format(R"({{"type": "point", "position": [0.3, 2.5, 0.2], "intensity": 10, "radius": {}}})", radius)};
+    s.lights = {
+        fmt::format(R"({{"type": "point", "position": [0.3, 2.5, 0.2], "intensity": 10, "radius": {}}})", radius)};
     const std::string name = "penumbra" + std::to_string(i);
     Rendered r = renderHdr(dir, name, writeScene(dir, name, s), size, size, 1, "shadow-raw", "--mode raster");
     ASSERT_TRUE(r.aovs.count("shadow-raw"));
@@ -153,7 +156,8 @@ TEST(RasterMode, PointLightCubeShadowsAllSides) {
   s.models.push_back({"room", room, {glm::vec3(0.8f)}, glm::vec3(6.0f), glm::vec3(0), glm::vec3(0)});
   const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   for (int i = 0; i < 6; ++i)
-    s.models.push_back({"cube" + std::to_string(i), unitBox(), {glm::vec3(0.8f)}, glm::vec3(0.4f), glm::vec3(0), axes[i]});
+    s.models.push_back(
+        {"cube" + std::to_string(i), unitBox(), {glm::vec3(0.8f)}, glm::vec3(0.4f), glm::vec3(0), axes[i]});
   s.lights = {R"({"type": "point", "position": [0, 0, 0], "intensity": 20, "radius": 0})"};
   const int size = 96;
   int shadowedPerWall[6] = {}, litPerWall[6] = {}, bad = 0;
@@ -323,5 +327,5 @@ TEST(RasterMode, RequireRtExitsWithMissingCapability) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test

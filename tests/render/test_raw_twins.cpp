@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -21,8 +21,8 @@ constexpr int kW = 64, kH = 48;
 // One frame (frame index 0) of `scene` with raw twins on; the AOVs by name.
 std::map<std::string, ImageF> renderTwins(const std::filesystem::path& dir, const std::string& scene,
                                           const std::string& args, const std::vector<std::string>& aovs) {
-  return renderAovs(dir, scene + " --size " + std::to_string(kW) + "x" + std::to_string(kH) + " --frames 1 --raw-rays " + args,
-                    aovs);
+  return renderAovs(
+      dir, scene + " --size " + std::to_string(kW) + "x" + std::to_string(kH) + " --frames 1 --raw-rays " + args, aovs);
 }
 
 float at(const ImageF& img, int x, int y, int c = 0) { return img.pixel(x, y)[c]; }
@@ -72,9 +72,10 @@ TEST(RawTwins, SpecularTwinTracesWhereTheSpecularPassDoes) {
   // First rays of rt-specular per pixel, before the checkerboard (every traced or skipped pixel)
   // and now (traced only): the figure the half rate changes.
   const double n = kW * kH;
-  std::printf("[raw-specular] first rays per pixel: %.3f with every glossy pixel traced, %.3f now "
-              "(%.3f skipped: half-rate glossy)\n",
-              (counts[0.25f] + counts[0.5f] + counts[1.0f]) / n, (counts[0.5f] + counts[1.0f]) / n, counts[0.25f] / n);
+  std::printf(
+      "[raw-specular] first rays per pixel: %.3f with every glossy pixel traced, %.3f now "
+      "(%.3f skipped: half-rate glossy)\n",
+      (counts[0.25f] + counts[0.5f] + counts[1.0f]) / n, (counts[0.5f] + counts[1.0f]) / n, counts[0.25f] / n);
   // The marble floor (roughness 0.3) skips half its glossy rays; its traced half and the chrome and
   // ice objects both hit and miss.
   EXPECT_GT(counts[0.25f], size_t(kW * kH / 10)) << "no half-rate checkerboard on the floor";

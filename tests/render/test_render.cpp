@@ -91,7 +91,8 @@ TEST(Render, TimingsAndJson) {
   RunResult r = runRayster("render --size 64x48 --frames 2 --primary raster --timings --json " + json.string() +
                            " -o " + (dir / "a.png").string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  for (const char* pass : {"gbuffer-raster", "rt-shadows", "rt-ao", "rt-indirect", "lighting", "tonemap", "frame (GPU)"})
+  for (const char* pass :
+       {"gbuffer-raster", "rt-shadows", "rt-ao", "rt-indirect", "lighting", "tonemap", "frame (GPU)"})
     EXPECT_NE(r.output.find(pass), std::string::npos) << pass << " missing in:\n" << r.output;
   ASSERT_TRUE(std::filesystem::exists(json));
 }
@@ -143,9 +144,10 @@ TEST(Render, PerLightShadowAovs) {
   writeAlphaMaskGltf(dir);
   std::ofstream(dir / "two.json") << R"({"models": [{"path": "alpha-mask.gltf"}],
     "lights": [{"type": "point", "position": [-2, 3, 4], "color": [1, 1, 1], "intensity": 40, "radius": 0.1}]})";
-  RunResult r = runRayster("render " + (dir / "two.json").string() +
-                           " --size 64x48 --frames 3 --aov shadow-raw,shadow0-raw,shadow1-raw,shadow1-denoised,shadow2-raw -o " +
-                           (dir / "t.png").string());
+  RunResult r =
+      runRayster("render " + (dir / "two.json").string() +
+                 " --size 64x48 --frames 3 --aov shadow-raw,shadow0-raw,shadow1-raw,shadow1-denoised,shadow2-raw -o " +
+                 (dir / "t.png").string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   auto raw0 = readExr(dir / "t.shadow0-raw.exr"), raw1 = readExr(dir / "t.shadow1-raw.exr");
   auto denoised1 = readExr(dir / "t.shadow1-denoised.exr");
@@ -196,7 +198,10 @@ TEST(RenderErrors, UnknownSceneOrMissingFile) {
 TEST(RenderErrors, UnwritableOutput) {
   auto dir = testDir();
   auto blocker = dir / "file";
-  { FILE* f = std::fopen(blocker.c_str(), "w"); std::fclose(f); }
+  {
+    FILE* f = std::fopen(blocker.c_str(), "w");
+    std::fclose(f);
+  }
   // A path under a regular file can never be created, even by root.
   RunResult r = runRayster("render --size 32x24 --frames 1 -o " + (blocker / "a.png").string());
   EXPECT_EQ(r.exitCode, 8) << r.output;
@@ -209,5 +214,5 @@ TEST(Info, ListsLavapipeWithRayTracing) {
   EXPECT_NE(r.output.find("ray-tracing pipeline: yes"), std::string::npos) << r.output;
 }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test

@@ -99,7 +99,8 @@ TEST(Scenes, CameraPathEndsAtItsLastKey) {
   "cameraPath": [{"time": 0, "position": [0, 2, 6], "target": [0, 1, 0]},
                  {"time": 1, "position": [4, 2, 3], "target": [0, 1, 0]}]
 })";
-  Image8 flown = renderOk(dir, "flown", file.string() + " --camera end --camera-path --path-fps 20 --frames 21", kW, kH);
+  Image8 flown =
+      renderOk(dir, "flown", file.string() + " --camera end --camera-path --path-fps 20 --frames 21", kW, kH);
   Image8 still = renderOk(dir, "still", file.string() + " --camera end --frames 1", kW, kH);
   Image8 start = renderOk(dir, "start", file.string() + " --camera end --camera-path --frames 1", kW, kH);
   EXPECT_GT(compare(still, flown, 0).psnr, 25.0) << "the path's last frame should show the last key's view";
@@ -113,5 +114,5 @@ TEST(Scenes, CameraPathNeedsAPath) {
   EXPECT_NE(r.output.find("no camera path"), std::string::npos) << r.output;
 }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test

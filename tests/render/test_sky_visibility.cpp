@@ -45,7 +45,8 @@ TEST_F(SkyVisibility, OffRecordsNothingOnTracesAndDenoisesIt) {
   RunResult off = runRayster("render " + scene(true) + " --size 48x32 --frames 2 --timings -o " + out);
   ASSERT_EQ(off.exitCode, 0) << off.output;
   EXPECT_EQ(off.output.find("sky-visibility"), std::string::npos) << off.output;
-  RunResult on = runRayster("render " + scene(true) + " --size 48x32 --frames 2 --timings --sky-visibility on -o " + out);
+  RunResult on =
+      runRayster("render " + scene(true) + " --size 48x32 --frames 2 --timings --sky-visibility on -o " + out);
   ASSERT_EQ(on.exitCode, 0) << on.output;
   for (const char* pass : {"rt-sky-visibility", "sky-visibility-temporal", "sky-visibility-atrous-4"})
     EXPECT_NE(on.output.find(pass), std::string::npos) << pass << "\n" << on.output;
@@ -112,5 +113,5 @@ TEST_F(SkyVisibility, LeavesTheLitImageUnchanged) {
   EXPECT_EQ(a->rgba, b->rgba);
 }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test

@@ -115,10 +115,14 @@ std::filesystem::path writeCutScene(const std::filesystem::path& dir, const std:
   std::ofstream(path) << R"({"models": [{"path": "builtin:cornell"}],
   "cameras": [{"name": "cam", "position": [2.78, 2.73, -8], "target": [2.78, 2.73, 0], "yfov": 39.3, "znear": 0.1, "zfar": 30}],
   "cameraPath": [
-    {"time": 0, "position": )" + first + R"(, "target": )" + target + R"(},
-    {"time": 0.5, "position": )" + first + R"(, "target": )" + target + R"(},
-    {"time": 0.501, "position": )" + second + R"(, "target": )" + target + R"(},
-    {"time": 100, "position": )" + second + R"(, "target": )" + target + R"(}
+    {"time": 0, "position": )" +
+                             first + R"(, "target": )" + target + R"(},
+    {"time": 0.5, "position": )" +
+                             first + R"(, "target": )" + target + R"(},
+    {"time": 0.501, "position": )" +
+                             second + R"(, "target": )" + target + R"(},
+    {"time": 100, "position": )" +
+                             second + R"(, "target": )" + target + R"(}
   ]})";
   return path;
 }
@@ -128,10 +132,12 @@ TEST(Taa, CameraCutLeavesNoTraceOfTheOldView) {
   const std::string oldView = "[0.6, 4.6, -3]", newView = "[4.6, 1.2, -4]";
   // At 10 fps frame 5 is the last of the old view and frame 6 (the 7th) the first after the cut.
   const std::string args = " --camera-path --path-fps 10 --frames 7 --primary raster --taa on --seed 4";
-  const ImageF cut = display(renderHdr(dir, "cut", writeCutScene(dir, "cut", oldView, newView).string() + args, kW, kH));
+  const ImageF cut =
+      display(renderHdr(dir, "cut", writeCutScene(dir, "cut", oldView, newView).string() + args, kW, kH));
   const ImageF alone =
       display(renderHdr(dir, "alone", writeCutScene(dir, "alone", newView, newView).string() + args, kW, kH));
-  const ImageF old = display(renderHdr(dir, "old", writeCutScene(dir, "old", oldView, oldView).string() + args, kW, kH));
+  const ImageF old =
+      display(renderHdr(dir, "old", writeCutScene(dir, "old", oldView, oldView).string() + args, kW, kH));
   const Errors vsAlone = errorsAgainst(alone, cut, 12.0f), oldVsAlone = errorsAgainst(alone, old, 12.0f);
   std::printf("cut vs new view alone: RMS %.2f, within 12/255 %.4f; old vs new view: RMS %.2f\n", vsAlone.allRms,
               vsAlone.fractionWithin, oldVsAlone.allRms);
@@ -164,5 +170,5 @@ TEST(Taa, RejectsBadValues) {
   }
 }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test

@@ -51,7 +51,8 @@ TEST(UserScenes, ReflectionsDoNotDependOnTheScaleOfLightUnits) {
     Image8 a = renderOk(dir, std::string("unit-") + primary, unit.string() + args, kW, kH);
     Image8 b = renderOk(dir, std::string("bright-") + primary, bright.string() + args + ev, kW, kH);
     ImageDiff diff = compare(a, b, 2);
-    if (diff.fractionWithinTolerance < 0.999) (void)writePng(dir / (std::string("diff-") + primary + ".png"), diff.heatmap);
+    if (diff.fractionWithinTolerance < 0.999)
+      (void)writePng(dir / (std::string("diff-") + primary + ".png"), diff.heatmap);
     EXPECT_GE(diff.fractionWithinTolerance, 0.999) << primary << ": max diff " << diff.maxChannelDiff;
   }
 }
@@ -67,7 +68,8 @@ TEST(UserScenes, HdrOutputsAreInTheScenesUnitsWhateverTheExposure) {
     return sum / double(img.rgba.size() / 4 * 3);
   };
   for (const char* mode : {"hybrid", "pathtrace"}) {
-    const std::string args = std::string("builtin:whitted --size 64x48 --frames 2 --seed 3 --primary raster --mode ") + mode;
+    const std::string args =
+        std::string("builtin:whitted --size 64x48 --frames 2 --seed 3 --primary raster --mode ") + mode;
     auto hdrAt = [&](const char* ev) {
       const auto out = dir / (std::string(mode) + ev + ".exr");
       RunResult r = runRayster("render " + args + " --exposure " + ev + " -o " + out.string());
@@ -90,7 +92,8 @@ glm::ivec2 sidednessPixel(glm::vec3 world, int w, int h) {
                          glm::lookAt(glm::vec3(0.0f, 3.5f, 9.0f), glm::vec3(0.0f, 0.5f, 0.0f), glm::vec3(0, 1, 0));
   const glm::vec4 c = clip * glm::vec4(world, 1.0f);
   const glm::ivec2 px(int((c.x / c.w * 0.5f + 0.5f) * float(w)), int((0.5f - c.y / c.w * 0.5f) * float(h)));
-  EXPECT_TRUE(px.x >= 0 && px.y >= 0 && px.x < w && px.y < h) << world.x << "," << world.y << "," << world.z << " → " << px.x << "," << px.y;
+  EXPECT_TRUE(px.x >= 0 && px.y >= 0 && px.x < w && px.y < h)
+      << world.x << "," << world.y << "," << world.z << " → " << px.x << "," << px.y;
   return glm::clamp(px, glm::ivec2(0), glm::ivec2(w - 1, h - 1));
 }
 
@@ -98,11 +101,16 @@ enum class Hue { Green, Blue, Yellow, Orange, NotOrange };
 bool hasHue(const float* p, Hue hue) {
   const float r = p[0], g = p[1], b = p[2];
   switch (hue) {
-    case Hue::Green: return g > 2.0f * r && g > 2.0f * b;
-    case Hue::Blue: return b > 2.0f * r && b > 1.5f * g;
-    case Hue::Yellow: return r > 2.0f * b && g > 2.0f * b;
-    case Hue::Orange: return r > 1.2f * g && g > 1.5f * b;
-    case Hue::NotOrange: return !hasHue(p, Hue::Orange);
+    case Hue::Green:
+      return g > 2.0f * r && g > 2.0f * b;
+    case Hue::Blue:
+      return b > 2.0f * r && b > 1.5f * g;
+    case Hue::Yellow:
+      return r > 2.0f * b && g > 2.0f * b;
+    case Hue::Orange:
+      return r > 1.2f * g && g > 1.5f * b;
+    case Hue::NotOrange:
+      return !hasHue(p, Hue::Orange);
   }
   return false;
 }
@@ -139,7 +147,8 @@ TEST(UserScenes, SingleSidedMaterialsShowNoBackFacesInAnyProducer) {
     }
     // The sun's rays from the floor meet the up-facing quad's back (no shadow) and the down-facing
     // quad's front (shadow); shadow maps render what those rays see.
-    const glm::ivec2 lit = sidednessPixel({-2.0f, -1.0f, 0.5f}, kW, kH), dark = sidednessPixel({2.0f, -1.0f, 0.5f}, kW, kH);
+    const glm::ivec2 lit = sidednessPixel({-2.0f, -1.0f, 0.5f}, kW, kH),
+                     dark = sidednessPixel({2.0f, -1.0f, 0.5f}, kW, kH);
     EXPECT_GT(aovs["shadow-raw"].pixel(lit.x, lit.y)[0], 0.9f) << mode << ": the up-facing quad casts a shadow";
     EXPECT_LT(aovs["shadow-raw"].pixel(dark.x, dark.y)[0], 0.1f) << mode << ": the down-facing quad casts none";
   }
@@ -170,5 +179,5 @@ TEST(UserScenes, SingleSidedMaterialsShowNoBackFacesInThePathTracer) {
       << "the sun lights the floor past the up-facing quad and not past the down-facing one";
 }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test

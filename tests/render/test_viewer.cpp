@@ -22,8 +22,8 @@ constexpr int kWidth = 160, kHeight = 120;
 TEST(Viewer, ScreenshotMatchesHeadlessRender) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (scripts/setup.sh installs xvfb and xauth)";
   const auto dir = testDir();
-  const std::string common = "builtin:cornell --primary raster --frames 4 --size " + std::to_string(kWidth) + "x" +
-                             std::to_string(kHeight);
+  const std::string common =
+      "builtin:cornell --primary raster --frames 4 --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight);
   const auto shot = dir / "view.png";
   RunResult v = runUnderXvfb("view " + common + " --hide-ui --screenshot " + shot.string());
   ASSERT_EQ(v.exitCode, 0) << v.output;
@@ -67,8 +67,10 @@ TEST(Viewer, ResizeMidRunIsCleanUnderValidation) {
   const auto dir = testDir();
   const auto shot = dir / "resized.png";
   // Grow, then shrink; the panel stays on so ImGui's pipeline sees the new framebuffers too.
-  RunResult v = runUnderXvfb("view builtin:spheres --frames 6 --size 160x120 --resize-at 2:200x150 "
-                             "--resize-at 4:128x96 --screenshot " + shot.string());
+  RunResult v = runUnderXvfb(
+      "view builtin:spheres --frames 6 --size 160x120 --resize-at 2:200x150 "
+      "--resize-at 4:128x96 --screenshot " +
+      shot.string());
   ASSERT_EQ(v.exitCode, 0) << v.output;
   EXPECT_EQ(v.output.find("validation error"), std::string::npos) << v.output;
   auto img = readPng(shot);
@@ -111,8 +113,9 @@ TEST(Viewer, MovedInstanceMovesPixelsWithMotionVectors) {
 TEST(Viewer, MovedInstanceMatchesHeadlessRender) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (scripts/setup.sh installs xvfb and xauth)";
   const auto dir = testDir();
-  const std::string common = "builtin:cornell --primary raster --frames 4 --size 160x120 "
-                             "--move-instance short-block:0.8,0,0.3@2";
+  const std::string common =
+      "builtin:cornell --primary raster --frames 4 --size 160x120 "
+      "--move-instance short-block:0.8,0,0.3@2";
   RunResult v = runUnderXvfb("view " + common + " --hide-ui --screenshot " + (dir / "view.png").string());
   ASSERT_EQ(v.exitCode, 0) << v.output;
   RunResult h = runRayster("render " + common + " -o " + (dir / "render.png").string());
@@ -129,8 +132,8 @@ TEST(Viewer, DebugViewMatchesRenderAov) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (scripts/setup.sh installs xvfb and xauth)";
   const auto dir = testDir();
   const std::string common = "builtin:cornell --primary raster --frames 2 --size 160x120";
-  RunResult v = runUnderXvfb("view " + common + " --debug-view normal --hide-ui --screenshot " +
-                             (dir / "view.png").string());
+  RunResult v =
+      runUnderXvfb("view " + common + " --debug-view normal --hide-ui --screenshot " + (dir / "view.png").string());
   ASSERT_EQ(v.exitCode, 0) << v.output;
   RunResult h = runRayster("render " + common + " --aov normal -o " + (dir / "render.png").string());
   ASSERT_EQ(h.exitCode, 0) << h.output;
@@ -149,8 +152,8 @@ TEST(Viewer, DebugViewMatchesRenderAov) {
 TEST(Viewer, FatalErrorIsShownInTheWindowBeforeExiting) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (scripts/setup.sh installs xvfb and xauth)";
   const auto start = std::chrono::steady_clock::now();
-  RunResult v = runUnderXvfb("view builtin:cornell --primary raster --frames 5 --size 160x120",
-                             "RAYSTER_VIEWER_FAIL_AT=oom:1");
+  RunResult v =
+      runUnderXvfb("view builtin:cornell --primary raster --frames 5 --size 160x120", "RAYSTER_VIEWER_FAIL_AT=oom:1");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(v.exitCode, 7) << v.output;
   EXPECT_NE(v.output.find("shown in the window: out of device memory"), std::string::npos) << v.output;
@@ -164,5 +167,5 @@ TEST(Viewer, NoDisplayFailsCleanly) {
   EXPECT_NE(r.output.find("xvfb-run"), std::string::npos) << r.output;
 }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test

@@ -21,7 +21,8 @@ inline void addPrimitive(Doc& d, int mesh, const std::vector<float>& pos, const 
   // POSITION needs min and max (glTF 2.0 §5.1.1).
   Json& acc = d.j["accessors"][size_t(attributes["POSITION"].get<int>())];
   std::vector<float> lo(3, 1e30f), hi(3, -1e30f);
-  for (size_t i = 0; i < pos.size(); ++i) lo[i % 3] = std::min(lo[i % 3], pos[i]), hi[i % 3] = std::max(hi[i % 3], pos[i]);
+  for (size_t i = 0; i < pos.size(); ++i)
+    lo[i % 3] = std::min(lo[i % 3], pos[i]), hi[i % 3] = std::max(hi[i % 3], pos[i]);
   acc["min"] = lo;
   acc["max"] = hi;
   if (!uv.empty()) attributes["TEXCOORD_0"] = d.floats(uv, "VEC2", 2);
@@ -53,12 +54,15 @@ inline void addUvSphere(Doc& d, int mesh, glm::vec3 c, float r, int material, in
 // A horizontal square at height y facing +Y, UVs 0..tiles.
 inline void addFloor(Doc& d, int mesh, float half, float y, int material, float tiles = 1.0f) {
   addPrimitive(d, mesh, {-half, y, half, half, y, half, half, y, -half, -half, y, -half},
-               {0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0}, {0, 1, 2, 0, 2, 3}, material, {0, 0, tiles, 0, tiles, tiles, 0, tiles});
+               {0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0}, {0, 1, 2, 0, 2, 3}, material,
+               {0, 0, tiles, 0, tiles, tiles, 0, tiles});
 }
 
 inline Json pbr(glm::vec3 base, float metallic, float roughness, bool doubleSided = true) {
   return {{"pbrMetallicRoughness",
-           {{"baseColorFactor", {base.r, base.g, base.b, 1.0}}, {"metallicFactor", metallic}, {"roughnessFactor", roughness}}},
+           {{"baseColorFactor", {base.r, base.g, base.b, 1.0}},
+            {"metallicFactor", metallic},
+            {"roughnessFactor", roughness}}},
           {"doubleSided", doubleSided}};
 }
 
@@ -86,9 +90,10 @@ inline std::filesystem::path writeSphereRowGltf(const std::filesystem::path& dir
                       pbr({0.5f, 0.5f, 0.5f}, 0.0f, 0.9f)};
   d.j["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"znear", znear}, {"zfar", 200.0}}}}};
   addLights(d, {{{"type", "directional"}, {"intensity", 3.0}}});
-  d.j["nodes"] = {{{"mesh", 0}, {"name", "spheres"}},
-                  cameraNode({-0.76f, 7.7f, 27.7f}, {-0.5f, 1.0f, 0.0f}, 0),
-                  {{"rotation", {-0.3535, 0.3535, 0.1464, 0.8535}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}};
+  d.j["nodes"] = {
+      {{"mesh", 0}, {"name", "spheres"}},
+      cameraNode({-0.76f, 7.7f, 27.7f}, {-0.5f, 1.0f, 0.0f}, 0),
+      {{"rotation", {-0.3535, 0.3535, 0.1464, 0.8535}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}};
   d.j["scenes"] = {{{"nodes", {0, 1, 2}}}};
   d.j["scene"] = 0;
   auto path = dir / "sphere-row.gltf";
@@ -126,10 +131,11 @@ inline std::filesystem::path writeSpecularSpheresGltf(const std::filesystem::pat
   d.j["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.55}, {"znear", 0.05}, {"zfar", 100.0}}}}};
   addLights(d, {{{"type", "directional"}, {"intensity", 3.0 * lightScale}, {"color", {1.0, 0.96, 0.9}}},
                 {{"type", "point"}, {"intensity", 48.0 * lightScale}, {"extras", {{"radius", 0.1}}}}});
-  d.j["nodes"] = {{{"mesh", 0}, {"name", "spheres"}},
-                  cameraNode({0.0f, 1.6f, 5.0f}, {0.0f, 0.45f, 0.0f}, 0),
-                  {{"rotation", {-0.3827, 0.0, 0.0, 0.9239}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
-                  {{"translation", {2.0, 3.0, 2.5}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}}};
+  d.j["nodes"] = {
+      {{"mesh", 0}, {"name", "spheres"}},
+      cameraNode({0.0f, 1.6f, 5.0f}, {0.0f, 0.45f, 0.0f}, 0),
+      {{"rotation", {-0.3827, 0.0, 0.0, 0.9239}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
+      {{"translation", {2.0, 3.0, 2.5}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}}};
   d.j["scenes"] = {{{"nodes", {0, 1, 2, 3}}}};
   d.j["scene"] = 0;
   auto path = dir / "specular-spheres.gltf";
@@ -150,7 +156,8 @@ inline std::filesystem::path writeSidednessGltf(const std::filesystem::path& dir
   auto quad = [&](int mesh, float cx, float cy, float h, bool facesPlusZ, int material) {
     std::vector<float> pos = {cx - h, cy - h, 0, cx + h, cy - h, 0, cx + h, cy + h, 0, cx - h, cy + h, 0};
     const float nz = facesPlusZ ? 1.0f : -1.0f;
-    std::vector<uint32_t> idx = facesPlusZ ? std::vector<uint32_t>{0, 1, 2, 0, 2, 3} : std::vector<uint32_t>{0, 2, 1, 0, 3, 2};
+    std::vector<uint32_t> idx =
+        facesPlusZ ? std::vector<uint32_t>{0, 1, 2, 0, 2, 3} : std::vector<uint32_t>{0, 2, 1, 0, 3, 2};
     addPrimitive(d, mesh, pos, {0, 0, nz, 0, 0, nz, 0, 0, nz, 0, 0, nz}, idx, material);
   };
   quad(0, -3.0f, 1.5f, 0.7f, true, 0);   // green, seen
@@ -158,7 +165,8 @@ inline std::filesystem::path writeSidednessGltf(const std::filesystem::path& dir
   // Mesh 1 sits under the mirroring node: object x = −3 lands at world x = +3.
   quad(1, -3.0f, 1.5f, 0.7f, true, 2);   // yellow, front to the camera after the mirror
   quad(1, -1.0f, 1.5f, 0.7f, false, 1);  // red, back to the camera after the mirror
-  addPrimitive(d, 2, {-6, -1, -1, 6, -1, -1, 6, 4, -1, -6, 4, -1}, {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, {0, 2, 1, 0, 3, 2},
+  addPrimitive(d, 2, {-6, -1, -1, 6, -1, -1, 6, 4, -1, -6, 4, -1}, {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1},
+               {0, 2, 1, 0, 3, 2},
                3);  // the backdrop, wound to face −Z: only double-sidedness shows it
   // One mesh for the backdrop, the floor and the horizontal quads: it mixes sidedness, so its
   // single-sided triangles take the any-hit path (render/gpu_scene.cpp).
@@ -170,17 +178,19 @@ inline std::filesystem::path writeSidednessGltf(const std::filesystem::path& dir
   addPrimitive(d, 2, {1.5f, 0, 1, 2.5f, 0, 1, 2.5f, 0, 2, 1.5f, 0, 2}, {0, -1, 0, 0, -1, 0, 0, -1, 0, 0, -1, 0},
                {0, 1, 2, 0, 2, 3}, 5);
   auto single = [](glm::vec3 c) { return pbr(c, 0.0f, 1.0f, false); };
-  d.j["materials"] = {single({0.1f, 0.8f, 0.1f}), single({0.9f, 0.05f, 0.05f}), single({0.9f, 0.8f, 0.05f}),
-                      pbr({0.1f, 0.2f, 0.9f}, 0.0f, 1.0f, true), single({0.7f, 0.7f, 0.7f}), single({0.8f, 0.5f, 0.2f})};
+  d.j["materials"] = {single({0.1f, 0.8f, 0.1f}),  single({0.9f, 0.05f, 0.05f}),
+                      single({0.9f, 0.8f, 0.05f}), pbr({0.1f, 0.2f, 0.9f}, 0.0f, 1.0f, true),
+                      single({0.7f, 0.7f, 0.7f}),  single({0.8f, 0.5f, 0.2f})};
   d.j["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.05}, {"zfar", 100.0}}}}};
   // The sun (light 0: the shadow-raw AOV) and a point light by the camera that shows the colours.
   addLights(d, {{{"type", "directional"}, {"intensity", 3.0}}, {{"type", "point"}, {"intensity", 40.0}}});
-  d.j["nodes"] = {{{"mesh", 0}, {"name", "quads"}},
-                  {{"mesh", 1}, {"name", "mirrored"}, {"scale", {-1.0, 1.0, 1.0}}},
-                  {{"mesh", 2}, {"name", "backdrop and floor"}},
-                  cameraNode({0.0f, 3.5f, 9.0f}, {0.0f, 0.5f, 0.0f}, 0),
-                  {{"rotation", {-0.3827, 0.0, 0.0, 0.9239}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
-                  {{"translation", {0.5, 3.0, 6.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}}};
+  d.j["nodes"] = {
+      {{"mesh", 0}, {"name", "quads"}},
+      {{"mesh", 1}, {"name", "mirrored"}, {"scale", {-1.0, 1.0, 1.0}}},
+      {{"mesh", 2}, {"name", "backdrop and floor"}},
+      cameraNode({0.0f, 3.5f, 9.0f}, {0.0f, 0.5f, 0.0f}, 0),
+      {{"rotation", {-0.3827, 0.0, 0.0, 0.9239}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
+      {{"translation", {0.5, 3.0, 6.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}}};
   d.j["scenes"] = {{{"nodes", {0, 1, 2, 3, 4, 5}}}};
   d.j["scene"] = 0;
   auto path = dir / "sidedness.gltf";
@@ -188,4 +198,4 @@ inline std::filesystem::path writeSidednessGltf(const std::filesystem::path& dir
   return path;
 }
 
-} // namespace rayster::test
+}  // namespace rayster::test

@@ -149,4 +149,4 @@ inline Result<scene::Scene> loadBytes(const TempDir& dir, const std::string& byt
   return scene::loadGltf(dir.write(name, bytes));
 }
 
-} // namespace rayster::test
+}  // namespace rayster::test

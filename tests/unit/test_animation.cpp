@@ -5,8 +5,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "core/log.h"
 #include "gltf_test_util.h"
@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr float kEps = 1e-5f;
-const float kHalfSqrt2 = std::sqrt(0.5f); // sin 45° = cos 45°
+const float kHalfSqrt2 = std::sqrt(0.5f);  // sin 45° = cos 45°
 
 // A unit box centred on the origin (8 shared corners, normals along the diagonals), mesh 0.
 void addBoxMesh(Doc& d) {
@@ -211,13 +211,14 @@ TEST(Animation, CubicSplineRotationIsNormalised) {
   channel.interp = scene::AnimationChannel::CubicSpline;
   channel.times = {0, 1};
   // Zero tangents between identity and 90° about Y: the raw Hermite blend is shorter than unit.
-  channel.values = {glm::vec4(0), glm::vec4(0, 0, 0, 1), glm::vec4(0),
-                    glm::vec4(0), glm::vec4(0, kHalfSqrt2, 0, kHalfSqrt2), glm::vec4(0)};
+  channel.values = {
+      glm::vec4(0), glm::vec4(0, 0, 0, 1), glm::vec4(0), glm::vec4(0), glm::vec4(0, kHalfSqrt2, 0, kHalfSqrt2),
+      glm::vec4(0)};
   const glm::vec4 q = scene::sampleChannel(channel, 0.5f);
   EXPECT_NEAR(glm::length(q), 1.0f, kEps);
   EXPECT_NEAR(q.x, 0.0f, kEps);
   EXPECT_NEAR(q.z, 0.0f, kEps);
-  EXPECT_NEAR(q.y / q.w, std::tan(glm::radians(22.5f)), 1e-4f); // symmetric blend: half the angle
+  EXPECT_NEAR(q.y / q.w, std::tan(glm::radians(22.5f)), 1e-4f);  // symmetric blend: half the angle
   const glm::vec4 end = scene::sampleChannel(channel, 1.0f);
   EXPECT_NEAR(end.y, kHalfSqrt2, kEps);
   EXPECT_NEAR(end.w, kHalfSqrt2, kEps);
@@ -238,9 +239,9 @@ TEST(Animation, ClampsBeforeTheFirstAndAfterTheLastKey) {
 
 TEST(Animation, LoopWrapsModuloTheLongestDuration) {
   scene::Scene scene = loadAnimated();
-  scene::evaluateAnimations(scene, 5.0f, /*loop=*/true); // 5 mod 2 = 1
+  scene::evaluateAnimations(scene, 5.0f, /*loop=*/true);  // 5 mod 2 = 1
   expectNear(position(scene, "translated"), {2, 1, 0});
-  scene::evaluateAnimations(scene, -0.5f, /*loop=*/true); // wraps to 1.5
+  scene::evaluateAnimations(scene, -0.5f, /*loop=*/true);  // wraps to 1.5
   expectNear(position(scene, "translated"), {3, 1.5f, 0});
 
   // A second, shorter animation wraps with the longest one (4 s), not its own length.
@@ -250,7 +251,7 @@ TEST(Animation, LoopWrapsModuloTheLongestDuration) {
   Result<scene::Scene> two = loadBytes(dir, d.gltf(), "two.gltf");
   ASSERT_TRUE(two.ok()) << two.error().message;
   ASSERT_EQ(two->animations.size(), 2u);
-  scene::evaluateAnimations(*two, 7.0f, true); // 7 mod 4 = 3
+  scene::evaluateAnimations(*two, 7.0f, true);  // 7 mod 4 = 3
   expectNear(position(*two, "translated"), {4, 2, 0});
   expectNear(position(*two, "static"), {0, 0, -8});
 }
@@ -275,14 +276,15 @@ TEST(Animation, StaticInstancesKeepTheirTransform) {
 TEST(Animation, PlacementFromASceneFileIsKept) {
   scene::Scene model = loadAnimated();
   scene::Scene world;
-  world.nodes.push_back({}); // something already there: indices must be re-based
+  world.nodes.push_back({});  // something already there: indices must be re-based
   const glm::mat4 placement = glm::translate(glm::mat4(1.0f), glm::vec3(100, 0, 0));
   scene::appendScene(world, std::move(model), placement);
   ASSERT_TRUE(scene::validate([&] {
                 scene::Scene s = world;
                 s.cameras.push_back({});
                 return s;
-              }()).ok());
+              }())
+                  .ok());
   scene::evaluateAnimations(world, 1.0f);
   expectNear(position(world, "translated"), {102, 1, 0});
   expectNear(position(world, "child"), {101, 5, 0});
@@ -393,4 +395,4 @@ TEST(AnimationTestModels, AnimatedModelsEvaluateWithoutNaN) {
   }
 }
 
-} // namespace
+}  // namespace

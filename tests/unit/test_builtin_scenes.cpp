@@ -68,8 +68,9 @@ TEST(BuiltinScenes, NamesListAllFour) {
   Result<Scene> unknown = makeBuiltinScene("builtin:sponza");
   ASSERT_FALSE(unknown.ok());
   EXPECT_EQ(unknown.error().code, ExitCode::BadInput);
-  EXPECT_EQ(unknown.error().message,
-            "unknown built-in scene 'builtin:sponza' (available: cornell, whitted, spheres, instances[:N], lights[:N])");
+  EXPECT_EQ(
+      unknown.error().message,
+      "unknown built-in scene 'builtin:sponza' (available: cornell, whitted, spheres, instances[:N], lights[:N])");
   Result<Scene> parameter = makeBuiltinScene("cornell:3");
   ASSERT_FALSE(parameter.ok());
   EXPECT_EQ(parameter.error().code, ExitCode::BadInput);

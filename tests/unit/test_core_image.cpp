@@ -57,7 +57,7 @@ ImageF gradientF(int w, int h) {
     for (int x = 0; x < w; ++x) {
       float* p = image.pixel(x, y);
       p[0] = 0.01f * static_cast<float>(x);
-      p[1] = 3.0f + 0.5f * static_cast<float>(y); // above 1: EXR must keep HDR values
+      p[1] = 3.0f + 0.5f * static_cast<float>(y);  // above 1: EXR must keep HDR values
       p[2] = 1e-3f * static_cast<float>(x + y);
       p[3] = 0.25f;
     }
@@ -69,7 +69,7 @@ void writeFile(const fs::path& path, const std::string& bytes) {
   out << bytes;
 }
 
-} // namespace
+}  // namespace
 
 TEST(Half, KnownValues) {
   EXPECT_EQ(floatToHalf(0.0f), 0x0000);
@@ -77,7 +77,7 @@ TEST(Half, KnownValues) {
   EXPECT_EQ(floatToHalf(1.0f), 0x3c00);
   EXPECT_EQ(floatToHalf(-2.0f), 0xc000);
   EXPECT_EQ(floatToHalf(65504.0f), 0x7bff);
-  EXPECT_EQ(floatToHalf(65520.0f), 0x7c00); // halfway to 65536 rounds to even: infinity
+  EXPECT_EQ(floatToHalf(65520.0f), 0x7c00);  // halfway to 65536 rounds to even: infinity
   EXPECT_EQ(floatToHalf(1e6f), 0x7c00);
   EXPECT_EQ(floatToHalf(std::numeric_limits<float>::infinity()), 0x7c00);
   EXPECT_EQ(floatToHalf(-std::numeric_limits<float>::infinity()), 0xfc00);
@@ -88,17 +88,17 @@ TEST(Half, KnownValues) {
 }
 
 TEST(Half, RoundsToNearestEven) {
-  EXPECT_EQ(floatToHalf(1.0f + std::ldexp(1.0f, -11)), 0x3c00);     // tie, even below
-  EXPECT_EQ(floatToHalf(1.0f + 3 * std::ldexp(1.0f, -11)), 0x3c02); // tie, even above
-  EXPECT_EQ(floatToHalf(1.0f + std::ldexp(1.2f, -11)), 0x3c01);     // above the tie
+  EXPECT_EQ(floatToHalf(1.0f + std::ldexp(1.0f, -11)), 0x3c00);      // tie, even below
+  EXPECT_EQ(floatToHalf(1.0f + 3 * std::ldexp(1.0f, -11)), 0x3c02);  // tie, even above
+  EXPECT_EQ(floatToHalf(1.0f + std::ldexp(1.2f, -11)), 0x3c01);      // above the tie
 }
 
 TEST(Half, Denormals) {
-  EXPECT_EQ(floatToHalf(std::ldexp(1.0f, -24)), 0x0001);      // smallest denormal
-  EXPECT_EQ(floatToHalf(std::ldexp(1.0f, -25)), 0x0000);      // tie rounds to even zero
+  EXPECT_EQ(floatToHalf(std::ldexp(1.0f, -24)), 0x0001);  // smallest denormal
+  EXPECT_EQ(floatToHalf(std::ldexp(1.0f, -25)), 0x0000);  // tie rounds to even zero
   EXPECT_EQ(floatToHalf(std::ldexp(1.5f, -25)), 0x0001);
-  EXPECT_EQ(floatToHalf(std::ldexp(1023.0f, -24)), 0x03ff);   // largest denormal
-  EXPECT_EQ(floatToHalf(std::ldexp(1.0f, -14)), 0x0400);      // smallest normal
+  EXPECT_EQ(floatToHalf(std::ldexp(1023.0f, -24)), 0x03ff);  // largest denormal
+  EXPECT_EQ(floatToHalf(std::ldexp(1.0f, -14)), 0x0400);     // smallest normal
   EXPECT_EQ(floatToHalf(std::ldexp(1.0f, -40)), 0x0000);
   EXPECT_EQ(halfToFloat(0x0001), std::ldexp(1.0f, -24));
   EXPECT_EQ(halfToFloat(0x8200), -std::ldexp(512.0f, -24));
@@ -119,9 +119,9 @@ TEST(Srgb, KnownPoints) {
   EXPECT_FLOAT_EQ(srgbToLinear(0.0f), 0.0f);
   EXPECT_FLOAT_EQ(srgbToLinear(1.0f), 1.0f);
   EXPECT_NEAR(srgbToLinear(0.5f), 0.214041f, 1e-5);
-  EXPECT_NEAR(srgbToLinear(0.04045f), 0.04045f / 12.92f, 1e-7); // linear segment
+  EXPECT_NEAR(srgbToLinear(0.04045f), 0.04045f / 12.92f, 1e-7);  // linear segment
   EXPECT_NEAR(linearToSrgb(0.18f), 0.461356f, 1e-5);
-  EXPECT_NEAR(linearToSrgb(0.0031308f), 0.04045f, 1e-5); // the two pieces meet
+  EXPECT_NEAR(linearToSrgb(0.0031308f), 0.04045f, 1e-5);  // the two pieces meet
   EXPECT_FLOAT_EQ(linearToSrgb(1.0f), 1.0f);
 }
 
@@ -149,7 +149,7 @@ TEST(Srgb, EncodeClampsAndZeroesNan) {
 TEST(ImageIo, PngRoundTrip) {
   TempDir dir;
   const Image8 image = gradient8(37, 19);
-  const fs::path path = dir.path() / "nested" / "out.png"; // parent folder is created
+  const fs::path path = dir.path() / "nested" / "out.png";  // parent folder is created
   ASSERT_TRUE(writePng(path, image).ok());
   auto read = readPng(path);
   ASSERT_TRUE(read.ok()) << read.error().message;

@@ -44,7 +44,7 @@ void expectVec(const Vec3& got, const Vec3& want, double tolerance) {
   for (size_t i = 0; i < 3; ++i) EXPECT_NEAR(got[i], want[i], tolerance) << "component " << i;
 }
 
-} // namespace
+}  // namespace
 
 TEST(FlipColor, PixelsPerDegree) {
   // 0.7 m * (3840 px / 0.7 m) * pi / 180 = 3840 pi / 180.
@@ -54,8 +54,9 @@ TEST(FlipColor, PixelsPerDegree) {
 
 TEST(FlipColor, WhiteIsTheReference) {
   // Row sums of the sRGB -> XYZ matrix.
-  expectVec(flip::referenceWhite(), {0.4124564 + 0.3575761 + 0.1804375, 0.2126729 + 0.7151522 + 0.0721750,
-                                     0.0193339 + 0.1191920 + 0.9503041}, 1e-12);
+  expectVec(flip::referenceWhite(),
+            {0.4124564 + 0.3575761 + 0.1804375, 0.2126729 + 0.7151522 + 0.0721750, 0.0193339 + 0.1191920 + 0.9503041},
+            1e-12);
   expectVec(flip::xyzToYcxcz(flip::referenceWhite()), {100.0, 0.0, 0.0}, 1e-9);
   expectVec(flip::xyzToLab(flip::referenceWhite()), {100.0, 0.0, 0.0}, 1e-9);
 }
@@ -153,9 +154,9 @@ TEST(FlipKernels, FeatureKernelsAreNormalised) {
     EXPECT_NEAR(positive, 1.0, 1e-12);
     EXPECT_NEAR(negative, -1.0, 1e-12);
   }
-  EXPECT_NEAR(k.firstDerivative[9], 0.0, 1e-15);           // odd
+  EXPECT_NEAR(k.firstDerivative[9], 0.0, 1e-15);  // odd
   EXPECT_NEAR(k.firstDerivative[4], -k.firstDerivative[14], 1e-15);
-  EXPECT_LT(k.secondDerivative[9], 0.0);                   // a dip at the centre
+  EXPECT_LT(k.secondDerivative[9], 0.0);  // a dip at the centre
   // The Gaussian's own shape: g(1) / g(0) = exp(-1 / (2 * 2.747^2)).
   EXPECT_NEAR(k.gaussian[10] / k.gaussian[9], std::exp(-1.0 / (2.0 * 2.747 * 2.747)), 1e-9);
 }

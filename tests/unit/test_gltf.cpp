@@ -2,8 +2,8 @@
 // documents built in the test. Refusals are in test_gltf_reject.cpp.
 #include <cmath>
 
-#include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
 
 #include "core/image_io.h"
 #include "gltf_test_util.h"
@@ -69,10 +69,9 @@ TEST(GltfLoad, NodeTransformsCompose) {
   TempDir dir;
   Doc d = quadDoc();
   // parent: translate (10,0,0), scale 2; child: matrix translating (0,1,0), holding the mesh.
-  d.j["nodes"] = Json::array({{{"name", "parent"}, {"translation", {10, 0, 0}}, {"scale", {2, 2, 2}}, {"children", {1}}},
-                              {{"name", "child"},
-                               {"mesh", 0},
-                               {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 1}}}});
+  d.j["nodes"] =
+      Json::array({{{"name", "parent"}, {"translation", {10, 0, 0}}, {"scale", {2, 2, 2}}, {"children", {1}}},
+                   {{"name", "child"}, {"mesh", 0}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 1}}}});
   Scene s = mustLoad(dir, d.gltf());
   ASSERT_EQ(s.instances.size(), 1u);
   EXPECT_EQ(s.instances[0].name, "child");
@@ -105,8 +104,8 @@ TEST(GltfLoad, NoScenesMeansAllRootNodes) {
 TEST(GltfLoad, NormalizedUnsignedShortUvs) {
   TempDir dir;
   Doc d = quadDoc();
-  const int uv = d.accessor(d.view(std::vector<uint16_t>{0, 65535, 65535, 65535, 65535, 0, 32768, 0}), kUShort, 4,
-                            "VEC2", true);
+  const int uv =
+      d.accessor(d.view(std::vector<uint16_t>{0, 65535, 65535, 65535, 65535, 0, 32768, 0}), kUShort, 4, "VEC2", true);
   primitive(d)["attributes"]["TEXCOORD_0"] = uv;
   Scene s = mustLoad(dir, d.gltf());
   const scene::Primitive& p = firstPrimitive(s);
@@ -167,7 +166,8 @@ TEST(GltfLoad, ByteStrideHonoured) {
   TempDir dir;
   Doc d = quadDoc();
   // Interleaved position + normal, 24 bytes per vertex.
-  const int view = d.view(std::vector<float>{0, 0, 0, 0, 0, 1, 2, 0, 0, 0, 0, 1, 2, 2, 0, 0, 0, 1, 0, 2, 0, 0, 0, 1}, 24);
+  const int view =
+      d.view(std::vector<float>{0, 0, 0, 0, 0, 1, 2, 0, 0, 0, 0, 1, 2, 2, 0, 0, 0, 1, 0, 2, 0, 0, 0, 1}, 24);
   primitive(d)["attributes"]["POSITION"] = d.accessor(view, kFloat, 4, "VEC3");
   primitive(d)["attributes"]["NORMAL"] = d.accessor(view, kFloat, 4, "VEC3", false, 12);
   Scene s = mustLoad(dir, d.gltf());
@@ -181,7 +181,8 @@ TEST(GltfLoad, NonIndexedGetsSequentialIndices) {
   TempDir dir;
   Doc d = quadDoc();
   primitive(d).erase("indices");
-  primitive(d)["attributes"] = {{"POSITION", d.floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3", 3)}};
+  primitive(d)["attributes"] = {
+      {"POSITION", d.floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3", 3)}};
   Scene s = mustLoad(dir, d.gltf());
   const scene::Primitive& p = firstPrimitive(s);
   EXPECT_EQ(p.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
@@ -206,10 +207,9 @@ TEST(GltfLoad, MissingNormalsAreFlatOnSharedVertices) {
 TEST(GltfLoad, CameraFromRotatedNode) {
   TempDir dir;
   Doc d = quadDoc();
-  const float h = std::sqrt(0.5f); // 90 degrees about +Y: local -Z looks down world -X
-  d.j["cameras"] = Json::array({{{"type", "perspective"},
-                                 {"name", "cam"},
-                                 {"perspective", {{"yfov", 0.5}, {"znear", 0.1}, {"zfar", 50}}}}});
+  const float h = std::sqrt(0.5f);  // 90 degrees about +Y: local -Z looks down world -X
+  d.j["cameras"] = Json::array(
+      {{{"type", "perspective"}, {"name", "cam"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}, {"zfar", 50}}}}});
   d.j["nodes"].push_back({{"name", "eye"}, {"camera", 0}, {"translation", {5, 0, 0}}, {"rotation", {0, h, 0, h}}});
   d.j["scenes"][0]["nodes"] = {0, 1};
   Scene s = mustLoad(dir, d.gltf());
@@ -228,13 +228,18 @@ TEST(GltfLoad, PunctualLights) {
   TempDir dir;
   Doc d = quadDoc();
   d.j["extensionsUsed"] = {"KHR_lights_punctual"};
-  d.j["extensions"]["KHR_lights_punctual"]["lights"] = Json::array(
-      {{{"type", "point"}, {"name", "bulb"}, {"color", {1, 0.5, 0.25}}, {"intensity", 20}, {"extras", {{"radius", 0.5}}}},
-       {{"type", "spot"}, {"intensity", 30}, {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.4}}}},
-       {{"type", "directional"}, {"intensity", 3}, {"extras", {{"angularRadius", 0.01}}}}});
-  const float h = std::sqrt(0.5f); // -90 degrees about +X: local -Z points down world -Y
+  d.j["extensions"]["KHR_lights_punctual"]["lights"] =
+      Json::array({{{"type", "point"},
+                    {"name", "bulb"},
+                    {"color", {1, 0.5, 0.25}},
+                    {"intensity", 20},
+                    {"extras", {{"radius", 0.5}}}},
+                   {{"type", "spot"}, {"intensity", 30}, {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.4}}}},
+                   {{"type", "directional"}, {"intensity", 3}, {"extras", {{"angularRadius", 0.01}}}}});
+  const float h = std::sqrt(0.5f);  // -90 degrees about +X: local -Z points down world -Y
   d.j["nodes"].push_back({{"translation", {0, 3, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
-  d.j["nodes"].push_back({{"name", "spot"}, {"translation", {1, 2, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+  d.j["nodes"].push_back(
+      {{"name", "spot"}, {"translation", {1, 2, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
   d.j["nodes"].push_back({{"rotation", {-h, 0, 0, h}}, {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}});
   d.j["scenes"][0]["nodes"] = {0, 1, 2, 3};
   Scene s = mustLoad(dir, d.gltf());
@@ -352,4 +357,4 @@ TEST(GltfLoad, UnknownOptionalExtensionOnlyWarns) {
   EXPECT_TRUE(loadBytes(dir, d.gltf()).ok());
 }
 
-} // namespace
+}  // namespace

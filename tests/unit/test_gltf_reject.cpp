@@ -55,7 +55,7 @@ TEST(GltfReject, TruncatedJson) {
 TEST(GltfReject, GarbageGlbLength) {
   TempDir dir;
   std::string glb = quadDoc().glb();
-  glb[8] = char(0xff); // the header's total length now exceeds the file
+  glb[8] = char(0xff);  // the header's total length now exceeds the file
   glb[9] = char(0xff);
   expectRefused(loadBytes(dir, glb, "bad.glb"), "GLB header says");
   std::string truncated = quadDoc().glb();
@@ -200,14 +200,14 @@ TEST(GltfReject, LinesMode) {
 TEST(GltfReject, WrongAccessorTypes) {
   TempDir dir;
   Doc d = quadDoc();
-  primitive(d)["attributes"]["POSITION"] = 2; // the VEC2 UV accessor
+  primitive(d)["attributes"]["POSITION"] = 2;  // the VEC2 UV accessor
   expectRefused(loadBytes(dir, d.gltf()), "accessor 2 has type VEC2, expected VEC3");
   Doc e = quadDoc();
-  primitive(e)["indices"] = 0; // float positions as indices
+  primitive(e)["indices"] = 0;  // float positions as indices
   expectRefused(loadBytes(dir, e.gltf()), "accessor 0 has type VEC3, expected SCALAR");
   Doc f = quadDoc();
   primitive(f)["attributes"]["NORMAL"] = 42;
   expectRefused(loadBytes(dir, f.gltf()), "accessor 42 does not exist");
 }
 
-} // namespace
+}  // namespace

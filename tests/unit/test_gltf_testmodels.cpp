@@ -76,4 +76,4 @@ TEST(GltfTestModels, BoxTexturedHasItsTexture) {
   EXPECT_EQ(scene->instances.size(), 1u);
 }
 
-} // namespace
+}  // namespace

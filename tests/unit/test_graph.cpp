@@ -290,5 +290,5 @@ TEST(RenderGraph, CompileIsPureAndRepeatable) {
   EXPECT_EQ(first[0].barriers[0].barrier.oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
 }
 
-} // namespace
-} // namespace rayster::graph
+}  // namespace
+}  // namespace rayster::graph

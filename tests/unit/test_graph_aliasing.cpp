@@ -32,8 +32,9 @@ void expectSound(const AliasPlan& plan, const std::vector<AliasItem>& items) {
     EXPECT_EQ(p.offset % items[i].alignment, 0u) << i;
     EXPECT_EQ(plan.heaps[p.heap].alignment % items[i].alignment, 0u) << i;
     for (size_t j = 0; j < i; ++j)
-      if (lifetimesOverlap(items[i], items[j]))
+      if (lifetimesOverlap(items[i], items[j])) {
         EXPECT_FALSE(memoryOverlaps(plan, items, i, j)) << i << " and " << j << " are alive together";
+      }
   }
   EXPECT_TRUE(planFits(plan, items));
 }
@@ -96,7 +97,8 @@ TEST(Aliasing, RandomItemsAreSoundAndNeverWorseThanSeparate) {
     std::vector<AliasItem> items(std::uniform_int_distribution<size_t>(1, 30)(rng));
     VkDeviceSize separate = 0;
     for (AliasItem& it : items) {
-      it.size = std::uniform_int_distribution<VkDeviceSize>(1, 64)(rng) * 4096 + std::uniform_int_distribution<VkDeviceSize>(0, 100)(rng);
+      it.size = std::uniform_int_distribution<VkDeviceSize>(1, 64)(rng) * 4096 +
+                std::uniform_int_distribution<VkDeviceSize>(0, 100)(rng);
       it.alignment = VkDeviceSize(1) << std::uniform_int_distribution<int>(0, 16)(rng);
       it.memoryTypeBits = std::uniform_int_distribution<uint32_t>(1, 2)(rng);
       it.first = std::uniform_int_distribution<uint32_t>(0, 20)(rng);
@@ -216,5 +218,5 @@ TEST(GraphAliasing, AliasedImageFirstBarrierWaitsForThePreviousOccupantAndDiscar
   for (size_t i = 0; i < aliased.size(); ++i) EXPECT_EQ(aliased[i].barriers.size(), unaliased[i].barriers.size());
 }
 
-} // namespace
-} // namespace rayster::graph
+}  // namespace
+}  // namespace rayster::graph

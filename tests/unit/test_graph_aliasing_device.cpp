@@ -3,8 +3,8 @@
 // contents its own passes wrote, and the frame's images are kept while the graph stays the same.
 #include <cmath>
 #include <cstring>
-#include <string>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -48,26 +48,33 @@ class GraphAliasingDevice : public ::testing::Test {
       ImageHandle img = graph.createImage("step" + std::to_string(i), desc());
       BufferHandle buf = graph.importBuffer("readback", &buffers[i], &states[i]);
       const VkClearColorValue colour{{float(i + 1) / 16.0f, float(seed) / 16.0f, 0.5f, 1.0f}};
-      graph.addPass("clear", [&](PassBuilder& b) { b.write(img, Use::TransferDst); },
-                    [img, colour](PassContext& pc) {
-                      const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-                      vkCmdClearColorImage(pc.cmd, pc.image(img).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                                           &colour, 1, &range);
-                    });
-      graph.addPass("copy", [&](PassBuilder& b) {
-        b.read(img, Use::TransferSrc);
-        b.write(buf, Use::TransferDst);
-      }, [img, buf](PassContext& pc) {
-        VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        region.imageExtent = {kW, kH, 1};
-        vkCmdCopyImageToBuffer(pc.cmd, pc.image(img).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                               pc.buffer(buf).handle(), 1, &region);
-      });
-      graph.addPass("host", [&](PassBuilder& b) {
-        b.read(buf, Use::HostRead);
-        b.sideEffect();
-      }, [](PassContext&) {});
+      graph.addPass(
+          "clear", [&](PassBuilder& b) { b.write(img, Use::TransferDst); },
+          [img, colour](PassContext& pc) {
+            const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            vkCmdClearColorImage(pc.cmd, pc.image(img).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &colour, 1,
+                                 &range);
+          });
+      graph.addPass(
+          "copy",
+          [&](PassBuilder& b) {
+            b.read(img, Use::TransferSrc);
+            b.write(buf, Use::TransferDst);
+          },
+          [img, buf](PassContext& pc) {
+            VkBufferImageCopy region{};
+            region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            region.imageExtent = {kW, kH, 1};
+            vkCmdCopyImageToBuffer(pc.cmd, pc.image(img).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                   pc.buffer(buf).handle(), 1, &region);
+          });
+      graph.addPass(
+          "host",
+          [&](PassBuilder& b) {
+            b.read(buf, Use::HostRead);
+            b.sideEffect();
+          },
+          [](PassContext&) {});
     }
     VkCommandBuffer cmd = commands_->begin();
     graph.execute(cmd, nullptr);
@@ -127,22 +134,27 @@ TEST_F(GraphAliasingDevice, ImportedImagesAreReportedNotAliased) {
   // the report counts it once. Only one handle is used, so the graph tracks one state.
   graph.importImage("history-again", &history, &historyState);
   BufferHandle buf = graph.importBuffer("readback", &buffer, &bufferState);
-  graph.addPass("clear", [&](PassBuilder& b) { b.write(h, Use::TransferDst); }, [h](PassContext& pc) {
-    const VkClearColorValue colour{{0.25f, 0.5f, 0.75f, 1.0f}};
-    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdClearColorImage(pc.cmd, pc.image(h).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &colour, 1, &range);
-  });
-  graph.addPass("copy", [&](PassBuilder& b) {
-    b.read(h, Use::TransferSrc);
-    b.write(buf, Use::TransferDst);
-    b.sideEffect();
-  }, [h, buf](PassContext& pc) {
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {kW, kH, 1};
-    vkCmdCopyImageToBuffer(pc.cmd, pc.image(h).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                           pc.buffer(buf).handle(), 1, &region);
-  });
+  graph.addPass(
+      "clear", [&](PassBuilder& b) { b.write(h, Use::TransferDst); },
+      [h](PassContext& pc) {
+        const VkClearColorValue colour{{0.25f, 0.5f, 0.75f, 1.0f}};
+        const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(pc.cmd, pc.image(h).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &colour, 1, &range);
+      });
+  graph.addPass(
+      "copy",
+      [&](PassBuilder& b) {
+        b.read(h, Use::TransferSrc);
+        b.write(buf, Use::TransferDst);
+        b.sideEffect();
+      },
+      [h, buf](PassContext& pc) {
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {kW, kH, 1};
+        vkCmdCopyImageToBuffer(pc.cmd, pc.image(h).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               pc.buffer(buf).handle(), 1, &region);
+      });
   VkCommandBuffer cmd = commands_->begin();
   graph.execute(cmd, nullptr);
   ctx_->wait(commands_->submit());
@@ -174,22 +186,27 @@ TEST_F(GraphAliasingDevice, HistoryReadsTheFrameBeforeAndIsReleasedWhenUnused) {
       frames = h.frames;
       BufferHandle buf = graph.importBuffer("readback", &buffer, &bufferState);
       if (h.frames > 0)
-        graph.addPass("copy-previous", [&](PassBuilder& b) {
-          b.read(h.previous, Use::TransferSrc);
-          b.write(buf, Use::TransferDst);
-        }, [h, buf](PassContext& pc) {
-          VkBufferImageCopy region{};
-          region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-          region.imageExtent = {kW, kH, 1};
-          vkCmdCopyImageToBuffer(pc.cmd, pc.image(h.previous).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                                 pc.buffer(buf).handle(), 1, &region);
-        });
-      graph.addPass("write-next", [&](PassBuilder& b) { b.write(h.next, Use::TransferDst); }, [h, f](PassContext& pc) {
-        const VkClearColorValue colour{{float(f + 1) / 16.0f, 0.0f, 0.0f, 1.0f}};
-        const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        vkCmdClearColorImage(pc.cmd, pc.image(h.next).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &colour, 1,
-                             &range);
-      });
+        graph.addPass(
+            "copy-previous",
+            [&](PassBuilder& b) {
+              b.read(h.previous, Use::TransferSrc);
+              b.write(buf, Use::TransferDst);
+            },
+            [h, buf](PassContext& pc) {
+              VkBufferImageCopy region{};
+              region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+              region.imageExtent = {kW, kH, 1};
+              vkCmdCopyImageToBuffer(pc.cmd, pc.image(h.previous).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                     pc.buffer(buf).handle(), 1, &region);
+            });
+      graph.addPass(
+          "write-next", [&](PassBuilder& b) { b.write(h.next, Use::TransferDst); },
+          [h, f](PassContext& pc) {
+            const VkClearColorValue colour{{float(f + 1) / 16.0f, 0.0f, 0.0f, 1.0f}};
+            const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            vkCmdClearColorImage(pc.cmd, pc.image(h.next).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &colour, 1,
+                                 &range);
+          });
     }
     VkCommandBuffer cmd = commands_->begin();
     graph.execute(cmd, nullptr);
@@ -212,5 +229,5 @@ TEST_F(GraphAliasingDevice, HistoryReadsTheFrameBeforeAndIsReleasedWhenUnused) {
   EXPECT_EQ(store.bytes(), 0u) << "a history no frame asked for is released";
 }
 
-} // namespace
-} // namespace rayster::graph
+}  // namespace
+}  // namespace rayster::graph

@@ -13,9 +13,8 @@ bool operator==(const Barrier& a, const Barrier& b) {
 }
 
 void PrintTo(const Barrier& b, std::ostream* os) {
-  *os << std::hex << "{src 0x" << b.srcStages << "/0x" << b.srcAccess << " -> dst 0x"
-      << b.dstStages << "/0x" << b.dstAccess << std::dec << ", layout " << b.oldLayout << " -> "
-      << b.newLayout << "}";
+  *os << std::hex << "{src 0x" << b.srcStages << "/0x" << b.srcAccess << " -> dst 0x" << b.dstStages << "/0x"
+      << b.dstAccess << std::dec << ", layout " << b.oldLayout << " -> " << b.newLayout << "}";
 }
 
 namespace {
@@ -33,16 +32,15 @@ constexpr VkImageLayout kReadOnly = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 constexpr bool kImage = true;
 constexpr bool kBuffer = false;
 
-std::optional<Barrier> barrier(VkPipelineStageFlags2 src, VkAccessFlags2 srcAccess,
-                               VkPipelineStageFlags2 dst, VkAccessFlags2 dstAccess,
-                               VkImageLayout oldLayout = kUndef, VkImageLayout newLayout = kUndef) {
+std::optional<Barrier> barrier(VkPipelineStageFlags2 src, VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dst,
+                               VkAccessFlags2 dstAccess, VkImageLayout oldLayout = kUndef,
+                               VkImageLayout newLayout = kUndef) {
   return Barrier{src, dst, srcAccess, dstAccess, oldLayout, newLayout};
 }
 
 TEST(GraphState, FirstWriteTransitionsFromUndefined) {
   ResourceState s;
-  EXPECT_EQ(transition(s, Use::StorageWriteCompute, kImage),
-            barrier(kNone, 0, kCs, kSw, kUndef, kGeneral));
+  EXPECT_EQ(transition(s, Use::StorageWriteCompute, kImage), barrier(kNone, 0, kCs, kSw, kUndef, kGeneral));
   EXPECT_EQ(s.layout, kGeneral);
   EXPECT_TRUE(s.contentsValid);
 }
@@ -52,52 +50,43 @@ TEST(GraphState, WriteToInvalidContentsDiscards) {
   ResourceState s{.layout = kGeneral, .contentsValid = false};
   EXPECT_EQ(transition(s, Use::ColorAttachment, kImage),
             barrier(kNone, 0, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                    VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT,
-                    kUndef, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL));
+                    VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT, kUndef,
+                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL));
 }
 
 TEST(GraphState, RawComputeToCompute) {
   ResourceState s;
   transition(s, Use::StorageWriteCompute, kImage);
-  EXPECT_EQ(transition(s, Use::StorageReadCompute, kImage),
-            barrier(kCs, kSw, kCs, kSr, kGeneral, kGeneral));
+  EXPECT_EQ(transition(s, Use::StorageReadCompute, kImage), barrier(kCs, kSw, kCs, kSr, kGeneral, kGeneral));
 }
 
 TEST(GraphState, RawRaygenStorageToSampledCompute) {
   ResourceState s;
-  EXPECT_EQ(transition(s, Use::StorageWriteRayTracing, kImage),
-            barrier(kNone, 0, kRt, kSw, kUndef, kGeneral));
-  EXPECT_EQ(transition(s, Use::SampledCompute, kImage),
-            barrier(kRt, kSw, kCs, kSampled, kGeneral, kReadOnly));
+  EXPECT_EQ(transition(s, Use::StorageWriteRayTracing, kImage), barrier(kNone, 0, kRt, kSw, kUndef, kGeneral));
+  EXPECT_EQ(transition(s, Use::SampledCompute, kImage), barrier(kRt, kSw, kCs, kSampled, kGeneral, kReadOnly));
 }
 
 TEST(GraphState, ComputeRaygenComputeChain) {
   ResourceState s;
-  EXPECT_EQ(transition(s, Use::StorageWriteCompute, kImage),
-            barrier(kNone, 0, kCs, kSw, kUndef, kGeneral));
-  EXPECT_EQ(transition(s, Use::StorageReadRayTracing, kImage),
-            barrier(kCs, kSw, kRt, kSr, kGeneral, kGeneral));
+  EXPECT_EQ(transition(s, Use::StorageWriteCompute, kImage), barrier(kNone, 0, kCs, kSw, kUndef, kGeneral));
+  EXPECT_EQ(transition(s, Use::StorageReadRayTracing, kImage), barrier(kCs, kSw, kRt, kSr, kGeneral, kGeneral));
   // Write-after-read: waiting for the raygen readers also orders the compute write before it.
-  EXPECT_EQ(transition(s, Use::StorageWriteRayTracing, kImage),
-            barrier(kRt, 0, kRt, kSw, kGeneral, kGeneral));
-  EXPECT_EQ(transition(s, Use::SampledCompute, kImage),
-            barrier(kRt, kSw, kCs, kSampled, kGeneral, kReadOnly));
+  EXPECT_EQ(transition(s, Use::StorageWriteRayTracing, kImage), barrier(kRt, 0, kRt, kSw, kGeneral, kGeneral));
+  EXPECT_EQ(transition(s, Use::SampledCompute, kImage), barrier(kRt, kSw, kCs, kSampled, kGeneral, kReadOnly));
   EXPECT_EQ(transition(s, Use::SampledCompute, kImage), std::nullopt);
 }
 
 TEST(GraphState, WarSampledThenStorageWrite) {
-  ResourceState s{.layout = kReadOnly, .contentsValid = true}; // an imported texture
+  ResourceState s{.layout = kReadOnly, .contentsValid = true};  // an imported texture
   EXPECT_EQ(transition(s, Use::SampledCompute, kImage), std::nullopt);
-  EXPECT_EQ(transition(s, Use::StorageWriteCompute, kImage),
-            barrier(kCs, 0, kCs, kSw, kReadOnly, kGeneral));
+  EXPECT_EQ(transition(s, Use::StorageWriteCompute, kImage), barrier(kCs, 0, kCs, kSw, kReadOnly, kGeneral));
 }
 
 TEST(GraphState, WawBuffer) {
   ResourceState s;
   EXPECT_EQ(transition(s, Use::StorageWriteCompute, kBuffer), std::nullopt);
   EXPECT_EQ(transition(s, Use::StorageWriteRayTracing, kBuffer), barrier(kCs, kSw, kRt, kSw));
-  EXPECT_EQ(transition(s, Use::StorageReadWriteRayTracing, kBuffer),
-            barrier(kRt, kSw, kRt, kSr | kSw));
+  EXPECT_EQ(transition(s, Use::StorageReadWriteRayTracing, kBuffer), barrier(kRt, kSw, kRt, kSr | kSw));
 }
 
 TEST(GraphState, ReadAfterReadNeedsNoBarrier) {
@@ -128,20 +117,17 @@ TEST(GraphState, SecondReaderAfterLayoutTransitionChainsThroughIt) {
   transition(s, Use::StorageWriteRayTracing, kImage);
   ASSERT_TRUE(transition(s, Use::SampledCompute, kImage));
   // The transition completed before compute; a fragment reader waits on compute, not on raygen.
-  EXPECT_EQ(transition(s, Use::SampledFragment, kImage),
-            barrier(kCs, 0, kFs, kSampled, kReadOnly, kReadOnly));
+  EXPECT_EQ(transition(s, Use::SampledFragment, kImage), barrier(kCs, 0, kFs, kSampled, kReadOnly, kReadOnly));
   EXPECT_EQ(transition(s, Use::SampledCompute, kImage), std::nullopt);
-  EXPECT_EQ(transition(s, Use::StorageWriteCompute, kImage),
-            barrier(kCs | kFs, 0, kCs, kSw, kReadOnly, kGeneral));
+  EXPECT_EQ(transition(s, Use::StorageWriteCompute, kImage), barrier(kCs | kFs, 0, kCs, kSw, kReadOnly, kGeneral));
 }
 
 TEST(GraphState, ColorAttachmentToSampledCompute) {
   ResourceState s;
   transition(s, Use::ColorAttachment, kImage);
   EXPECT_EQ(transition(s, Use::SampledCompute, kImage),
-            barrier(VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                    VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, kCs, kSampled,
-                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kReadOnly));
+            barrier(VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, kCs,
+                    kSampled, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kReadOnly));
 }
 
 TEST(GraphState, DepthAttachmentToSampledCompute) {
@@ -172,8 +158,8 @@ TEST(GraphState, TransferDstToHostRead) {
   ResourceState s;
   transition(s, Use::TransferDst, kBuffer);
   EXPECT_EQ(transition(s, Use::HostRead, kBuffer),
-            barrier(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                    VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT));
+            barrier(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                    VK_ACCESS_2_HOST_READ_BIT));
 }
 
 // GPU culling: a compute pass writes draw commands and counts that vkCmdDrawIndirectCount reads,
@@ -197,8 +183,8 @@ TEST(GraphState, ComputeWriteToIndirectRead) {
 TEST(GraphState, TransferImageLayouts) {
   ResourceState s;
   EXPECT_EQ(transition(s, Use::TransferDst, kImage),
-            barrier(kNone, 0, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                    kUndef, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL));
+            barrier(kNone, 0, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, kUndef,
+                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL));
   EXPECT_EQ(transition(s, Use::TransferSrc, kImage),
             barrier(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
@@ -213,15 +199,13 @@ TEST(GraphState, AccelStructBuildThenTrace) {
   EXPECT_EQ(transition(s, Use::AccelStructBuildWrite, kBuffer), std::nullopt);
   EXPECT_EQ(transition(s, Use::AccelStructRead, kBuffer), barrier(build, asWrite, kRt, asRead));
   // Next frame's refit reads the structure too, so it waits for the tracer and the last build.
-  EXPECT_EQ(transition(s, Use::AccelStructBuildWrite, kBuffer),
-            barrier(build | kRt, asWrite, build, asRead | asWrite));
+  EXPECT_EQ(transition(s, Use::AccelStructBuildWrite, kBuffer), barrier(build | kRt, asWrite, build, asRead | asWrite));
 }
 
 // Mirrors the image-only / buffer-only split that accessInfo asserts on.
 bool appliesTo(Use use, bool isImage) {
   const bool imageOnly = use <= Use::SampledFragment;
-  const bool bufferOnly =
-      (use >= Use::UniformRead && use <= Use::IndexRead) || use >= Use::AccelStructBuildWrite;
+  const bool bufferOnly = (use >= Use::UniformRead && use <= Use::IndexRead) || use >= Use::AccelStructBuildWrite;
   return isImage ? !bufferOnly : !imageOnly;
 }
 
@@ -256,5 +240,5 @@ TEST(GraphStateDeathTest, WrongResourceKindAsserts) {
   EXPECT_DEATH(accessInfo(Use::IndexRead, kImage), "buffers only");
 }
 
-} // namespace
-} // namespace rayster::graph
+}  // namespace
+}  // namespace rayster::graph

@@ -46,5 +46,5 @@ TEST(TaaJitter, ShiftsNdcByTheOffsetAtEveryDepth) {
   }
 }
 
-} // namespace
-} // namespace rayster::render
+}  // namespace
+}  // namespace rayster::render

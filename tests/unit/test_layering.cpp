@@ -37,12 +37,12 @@ TEST(Layering, IncludesPointDownOnly) {
         if (!std::regex_search(line, m, include)) continue;
         ++checked;
         EXPECT_TRUE(allowed.count(m[1].str()))
-            << entry.path().lexically_relative(root).string() << ":" << lineNo << ": layer '" << layer
-            << "' includes '" << m[1].str() << "/', which is not below it";
+            << entry.path().lexically_relative(root).string() << ":" << lineNo << ": layer '" << layer << "' includes '"
+            << m[1].str() << "/', which is not below it";
       }
     }
   }
   EXPECT_GT(checked, 50) << "the scan found too few includes to be meaningful";
 }
 
-} // namespace
+}  // namespace

@@ -3,8 +3,8 @@
 #include <fstream>
 #include <string>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/builtin.h"
 #include "scene/loader.h"
@@ -40,7 +40,7 @@ glm::vec3 project(const Camera& camera, glm::vec3 point) {
   return glm::vec3(clip) / clip.w;
 }
 
-} // namespace
+}  // namespace
 
 TEST_F(LoaderTest, DispatchesByExtensionCaseInsensitively) {
   Result<Scene> obj = loadScene(write("Model.OBJ", kTriangleObj));
@@ -107,7 +107,7 @@ TEST_F(LoaderTest, AddsSunSkyAndFramingCameraToBareModels) {
   EXPECT_EQ(camera.name, "default");
   EXPECT_NEAR(camera.yFov, glm::radians(45.0f), 1e-6f);
   const Aabb box = scene.bounds();
-  EXPECT_GT(camera.position.z, box.max.z);  // in front, on the +Z side
+  EXPECT_GT(camera.position.z, box.max.z);       // in front, on the +Z side
   EXPECT_GT(camera.position.y, box.centre().y);  // slightly above
   // The centre is in view, and so is every corner of the bounds.
   const glm::vec3 centre = project(camera, box.centre());
@@ -141,8 +141,8 @@ TEST(LoaderPaths, ResolveRelativePathPolicy) {
   ASSERT_TRUE(ok.ok()) << ok.error().message;
   EXPECT_EQ(*ok, fs::path("/data/scenes/textures/wood.png"));
   EXPECT_TRUE(resolveRelativePath("/d", "./a/./b.png", "t").ok());
-  for (const char* bad : {"", "/etc/passwd", "..", "a/../../b", "..\\b", "file:///etc/passwd", "C:\\x.png",
-                          "http://example.com/a.png"}) {
+  for (const char* bad :
+       {"", "/etc/passwd", "..", "a/../../b", "..\\b", "file:///etc/passwd", "C:\\x.png", "http://example.com/a.png"}) {
     Result<fs::path> refused = resolveRelativePath("/d", bad, "t");
     EXPECT_FALSE(refused.ok()) << bad;
     if (!refused.ok()) {

@@ -177,8 +177,8 @@ TEST_F(MemoryDevice, UsedBytesReturnAfterDestruction) {
   EXPECT_EQ(after.usedBytes, before.usedBytes);
   EXPECT_EQ(after.dedicatedCount, before.dedicatedCount);
   // Blocks stay, dedicated memory goes back to the driver.
-  EXPECT_EQ(after.reservedBytes, before.reservedBytes + uint64_t(after.blockCount - before.blockCount) *
-                                                            MemoryAllocator::kBlockSize);
+  EXPECT_EQ(after.reservedBytes,
+            before.reservedBytes + uint64_t(after.blockCount - before.blockCount) * MemoryAllocator::kBlockSize);
 }
 
 TEST_F(MemoryDevice, MappingAndAddresses) {
@@ -239,5 +239,5 @@ TEST_F(MemoryDevice, LargeRoundTripThroughDedicatedMemory) {
   EXPECT_EQ(stats().dedicatedCount, dedicatedBefore);
 }
 
-} // namespace
-} // namespace rayster::rhi
+}  // namespace
+}  // namespace rayster::rhi

@@ -36,7 +36,7 @@ ImageF gradientF(int w, int h) {
   return image;
 }
 
-} // namespace
+}  // namespace
 
 TEST(RejectEmpty, AcceptsAGradient) {
   EXPECT_EQ(rejectEmpty(gradient8(8, 6), 8, 6), std::nullopt);
@@ -49,13 +49,13 @@ TEST(RejectEmpty, WrongSizeAndEmpty) {
   EXPECT_NE(rejectEmpty(Image8{}, 0, 0), std::nullopt);
   EXPECT_NE(rejectEmpty(ImageF{}, 0, 0), std::nullopt);
   Image8 lying = gradient8(4, 4);
-  lying.rgba.resize(8); // width/height disagree with the data
+  lying.rgba.resize(8);  // width/height disagree with the data
   EXPECT_NE(rejectEmpty(lying, 4, 4), std::nullopt);
 }
 
 TEST(RejectEmpty, AllBlack) {
   Image8 black = Image8::make(5, 5);
-  for (size_t i = 3; i < black.rgba.size(); i += 4) black.rgba[i] = 255; // opaque black is still black
+  for (size_t i = 3; i < black.rgba.size(); i += 4) black.rgba[i] = 255;  // opaque black is still black
   const auto reason = rejectEmpty(black, 5, 5);
   ASSERT_NE(reason, std::nullopt);
   EXPECT_NE(reason->find("black"), std::string::npos);
@@ -65,13 +65,13 @@ TEST(RejectEmpty, AllBlack) {
 TEST(RejectEmpty, Uniform) {
   Image8 grey = Image8::make(5, 5);
   for (size_t i = 0; i < grey.rgba.size(); ++i) grey.rgba[i] = static_cast<uint8_t>(i % 4 == 3 ? i % 7 : 128);
-  const auto reason = rejectEmpty(grey, 5, 5); // alpha varies, rgb does not
+  const auto reason = rejectEmpty(grey, 5, 5);  // alpha varies, rgb does not
   ASSERT_NE(reason, std::nullopt);
   EXPECT_NE(reason->find("uniform"), std::string::npos);
   ImageF flat = ImageF::make(3, 3);
   for (float& v : flat.rgba) v = 0.25f;
   EXPECT_NE(rejectEmpty(flat, 3, 3), std::nullopt);
-  flat.pixel(2, 2)[1] = 0.3f; // one different pixel makes it a real image
+  flat.pixel(2, 2)[1] = 0.3f;  // one different pixel makes it a real image
   EXPECT_EQ(rejectEmpty(flat, 3, 3), std::nullopt);
 }
 
@@ -82,7 +82,7 @@ TEST(RejectEmpty, NonFinite) {
   ASSERT_NE(reason, std::nullopt);
   EXPECT_NE(reason->find("(1, 2)"), std::string::npos);
   image = gradientF(4, 4);
-  image.pixel(3, 3)[3] = std::numeric_limits<float>::infinity(); // alpha counts too
+  image.pixel(3, 3)[3] = std::numeric_limits<float>::infinity();  // alpha counts too
   EXPECT_NE(rejectEmpty(image, 4, 4), std::nullopt);
 }
 
@@ -101,7 +101,7 @@ TEST(Compare, OnePixelOffByThree) {
   const Image8 a = gradient8(4, 4);
   Image8 b = a;
   b.pixel(2, 1)[0] += 3;
-  b.pixel(0, 0)[3] = 0; // alpha is ignored
+  b.pixel(0, 0)[3] = 0;  // alpha is ignored
   const ImageDiff diff = compare(a, b, 2);
   EXPECT_EQ(diff.maxChannelDiff, 3);
   EXPECT_DOUBLE_EQ(diff.fractionWithinTolerance, 15.0 / 16.0);
@@ -135,7 +135,7 @@ TEST(FloatMetrics, RmseByHand) {
   ImageF b = ImageF::make(2, 1);
   b.pixel(0, 0)[0] = 1.0f;
   b.pixel(1, 0)[2] = 2.0f;
-  b.pixel(1, 0)[3] = 100.0f; // alpha is ignored
+  b.pixel(1, 0)[3] = 100.0f;  // alpha is ignored
   EXPECT_NEAR(rmse(a, b), std::sqrt(5.0 / 6.0), 1e-12);
   EXPECT_EQ(rmse(a, a), 0.0);
 }
@@ -170,8 +170,8 @@ TEST(MetricsPsnr, ByHand) {
 
 TEST(MetricsMask, FromImage) {
   Image8 image = Image8::make(3, 1);
-  image.pixel(1, 0)[2] = 1;   // any nonzero rgb counts
-  image.pixel(2, 0)[3] = 255; // alpha alone does not
+  image.pixel(1, 0)[2] = 1;    // any nonzero rgb counts
+  image.pixel(2, 0)[3] = 255;  // alpha alone does not
   const PixelMask mask = maskFromImage(image);
   ASSERT_EQ(mask.inside.size(), 3u);
   EXPECT_EQ(mask.count(), 1u);

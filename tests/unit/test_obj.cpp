@@ -63,7 +63,7 @@ vn 0 0 1
 f 1/1/1 2/2/1 3/3/1 4/4/1
 )";
 
-} // namespace
+}  // namespace
 
 TEST_F(ObjTest, QuadWithTexcoordsAndNormals) {
   Result<Scene> loaded = loadObj(write("quad.obj", kQuad));
@@ -91,8 +91,9 @@ TEST_F(ObjTest, QuadWithTexcoordsAndNormals) {
 
 TEST_F(ObjTest, GeneratesSmoothNormalsAndTriangulatesPolygons) {
   // A pentagon in the xz plane, counter-clockwise seen from +Y, without vn lines.
-  Result<Scene> scene = loadObj(write("penta.obj", "v 0 0 0\nv 1 0 0\nv 1.5 0 -1\nv 0.5 0 -2\nv -0.5 0 -1\n"
-                                                   "f 1 2 3 4 5\n"));
+  Result<Scene> scene = loadObj(write("penta.obj",
+                                      "v 0 0 0\nv 1 0 0\nv 1.5 0 -1\nv 0.5 0 -2\nv -0.5 0 -1\n"
+                                      "f 1 2 3 4 5\n"));
   ASSERT_TRUE(scene.ok()) << scene.error().message;
   const Primitive& prim = scene->meshes.at(0).primitives.at(0);
   EXPECT_EQ(prim.indices.size(), 9u);
@@ -244,9 +245,7 @@ TEST_F(ObjTest, RejectsFilesWithoutTriangles) {
   expectRejected("# only points\nv 0 0 0\nv 1 0 0\nl 1 2\n", "no triangles");
 }
 
-TEST_F(ObjTest, RejectsNonFiniteVertices) {
-  expectRejected("v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n", "not finite");
-}
+TEST_F(ObjTest, RejectsNonFiniteVertices) { expectRejected("v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n", "not finite"); }
 
 TEST_F(ObjTest, MissingFileIsBadInput) {
   Result<Scene> scene = loadObj(dir_ / "nope.obj");

@@ -160,8 +160,9 @@ TEST_F(PassBindings, EachBindRecordsTheAccessItsDescriptorImplies) {
   graph.setGlobals({VK_NULL_HANDLE, nearest.handle(), {}});
   const graph::ImageHandle hdr = graph.createImage("hdr", desc(VK_FORMAT_R16G16B16A16_SFLOAT));
   const graph::ImageHandle ldr = graph.createImage("ldr", desc(VK_FORMAT_R8G8B8A8_UNORM));
-  graph.addPass("fill", [&](graph::PassBuilder& b) { b.write(hdr, graph::Use::StorageWriteCompute); },
-                [](graph::PassContext&) {});
+  graph.addPass(
+      "fill", [&](graph::PassBuilder& b) { b.write(hdr, graph::Use::StorageWriteCompute); },
+      [](graph::PassContext&) {});
   graph.addPass(
       "tonemap",
       [&](graph::PassBuilder& b) {
@@ -204,8 +205,9 @@ TEST_F(PassBindingsDeathTest, AnUnboundDescriptorIsRefusedWithItsName) {
   };
   EXPECT_DEATH(record(false, "hdrTex"), "pass 'tonemap', descriptor 'outLdr': declared by the shaders but not bound");
   // A misspelt name binds nothing, so the descriptor it meant is reported unbound.
-  EXPECT_DEATH(record(true, "hdrTexture"), "pass 'tonemap', descriptor 'hdrTex': declared by the shaders but not bound");
+  EXPECT_DEATH(record(true, "hdrTexture"),
+               "pass 'tonemap', descriptor 'hdrTex': declared by the shaders but not bound");
 }
 
-} // namespace
-} // namespace rayster
+}  // namespace
+}  // namespace rayster

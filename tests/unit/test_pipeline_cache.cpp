@@ -53,9 +53,9 @@ TEST(PipelineCacheHeader, AcceptsOnlyThisDevicesVersionOneHeader) {
   other = k;
   other.vendorId = 0x1002;
   EXPECT_FALSE(pipelineCacheUsable(header(other), k));
-  EXPECT_FALSE(pipelineCacheUsable(header(k, 32, 2), k));        // unknown header version
-  EXPECT_FALSE(pipelineCacheUsable(header(k, 16), k));           // header too short for the UUID
-  EXPECT_FALSE(pipelineCacheUsable(header(k, 4096, 1, 8), k));   // header claims more than the file
+  EXPECT_FALSE(pipelineCacheUsable(header(k, 32, 2), k));       // unknown header version
+  EXPECT_FALSE(pipelineCacheUsable(header(k, 16), k));          // header too short for the UUID
+  EXPECT_FALSE(pipelineCacheUsable(header(k, 4096, 1, 8), k));  // header claims more than the file
   std::vector<uint8_t> truncated = header(k);
   truncated.resize(20);
   EXPECT_FALSE(pipelineCacheUsable(truncated, k));
@@ -72,7 +72,10 @@ TEST(PipelineCacheHeader, PathFollowsTheEnvironment) {
   EXPECT_NE(p.filename().string().find("0314253647"), std::string::npos) << p;  // the UUID in hex
   setenv("RAYSTER_CACHE_DIR", "off", 1);
   EXPECT_TRUE(pipelineCachePath(testKey()).empty());
-  if (saved) setenv("RAYSTER_CACHE_DIR", restore.c_str(), 1); else unsetenv("RAYSTER_CACHE_DIR");
+  if (saved)
+    setenv("RAYSTER_CACHE_DIR", restore.c_str(), 1);
+  else
+    unsetenv("RAYSTER_CACHE_DIR");
 }
 
 class PipelineCacheDevice : public ::testing::Test {
@@ -85,7 +88,10 @@ class PipelineCacheDevice : public ::testing::Test {
     setenv("RAYSTER_CACHE_DIR", dir_.c_str(), 1);
   }
   void TearDown() override {
-    if (hadEnv_) setenv("RAYSTER_CACHE_DIR", savedEnv_.c_str(), 1); else unsetenv("RAYSTER_CACHE_DIR");
+    if (hadEnv_)
+      setenv("RAYSTER_CACHE_DIR", savedEnv_.c_str(), 1);
+    else
+      unsetenv("RAYSTER_CACHE_DIR");
   }
   // A context that builds the denoisers' compute pipelines through the cache, then is destroyed
   // (which writes the cache). Returns the bytes the cache loaded at start-up, or -1 without a device.
@@ -151,5 +157,5 @@ TEST_F(PipelineCacheDevice, DamagedOrForeignFilesAreIgnoredAndReplaced) {
   }
 }
 
-} // namespace
-} // namespace rayster::rhi
+}  // namespace
+}  // namespace rayster::rhi

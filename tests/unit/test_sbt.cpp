@@ -16,7 +16,8 @@ struct Props {
 };
 
 void PrintTo(const Props& p, std::ostream* os) {
-  *os << p.name << " (handle " << p.handleSize << ", align " << p.handleAlignment << ", base " << p.baseAlignment << ")";
+  *os << p.name << " (handle " << p.handleSize << ", align " << p.handleAlignment << ", base " << p.baseAlignment
+      << ")";
 }
 
 class SbtLayoutTest : public ::testing::TestWithParam<Props> {};
@@ -116,5 +117,5 @@ TEST(SbtLayout, HandleSmallerThanAlignment) {
   EXPECT_EQ(l.totalSize, 384u);
 }
 
-} // namespace
-} // namespace rayster::rhi
+}  // namespace
+}  // namespace rayster::rhi

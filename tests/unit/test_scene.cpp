@@ -4,8 +4,8 @@
 #include <limits>
 #include <string>
 
-#include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
 
 #include "scene/builtin.h"
 #include "scene/geometry.h"
@@ -62,7 +62,7 @@ void expectBadInput(const Scene& scene, const std::string& fragment) {
   EXPECT_NE(status.error().message.find(fragment), std::string::npos) << status.error().message;
 }
 
-} // namespace
+}  // namespace
 
 TEST(Builtin, NamesAndPrefix) {
   EXPECT_EQ(builtinSceneNames(), (std::vector<std::string>{"cornell", "whitted", "spheres", "instances", "lights"}));
@@ -71,7 +71,8 @@ TEST(Builtin, NamesAndPrefix) {
   auto unknown = makeBuiltinScene("sponza");
   ASSERT_FALSE(unknown.ok());
   EXPECT_EQ(unknown.error().code, ExitCode::BadInput);
-  EXPECT_EQ(unknown.error().message, "unknown built-in scene 'sponza' (available: cornell, whitted, spheres, instances[:N], lights[:N])");
+  EXPECT_EQ(unknown.error().message,
+            "unknown built-in scene 'sponza' (available: cornell, whitted, spheres, instances[:N], lights[:N])");
 }
 
 TEST(Cornell, ValidatesWithOneLightAndCamera) {
@@ -89,9 +90,7 @@ TEST(Cornell, ValidatesWithOneLightAndCamera) {
 
 TEST(Cornell, MaterialColours) {
   const Scene scene = makeCornellBox();
-  auto materialOf = [&](const std::string& name) {
-    return scene.materials.at(primitiveOf(scene, name).material);
-  };
+  auto materialOf = [&](const std::string& name) { return scene.materials.at(primitiveOf(scene, name).material); };
   EXPECT_EQ(materialOf("floor").baseColor, glm::vec4(0.725f, 0.71f, 0.68f, 1.0f));
   EXPECT_EQ(materialOf("red-wall").baseColor, glm::vec4(0.63f, 0.065f, 0.05f, 1.0f));
   EXPECT_EQ(materialOf("green-wall").baseColor, glm::vec4(0.14f, 0.45f, 0.091f, 1.0f));
@@ -137,7 +136,7 @@ TEST(Cornell, BlockNormalsFaceOutward) {
   const Scene scene = makeCornellBox();
   for (const char* name : {"short-block", "tall-block"}) {
     const Primitive& prim = primitiveOf(scene, name);
-    ASSERT_EQ(prim.positions.size(), 20u) << name; // top + 4 sides, 4 vertices each
+    ASSERT_EQ(prim.positions.size(), 20u) << name;  // top + 4 sides, 4 vertices each
     const glm::vec3 blockCentre = centroid(prim.positions);
     for (size_t face = 0; face < 5; ++face) {
       const std::vector<glm::vec3> corners(prim.positions.begin() + face * 4, prim.positions.begin() + face * 4 + 4);
@@ -187,7 +186,7 @@ TEST(Geometry, UvSphere) {
     EXPECT_NEAR(glm::length(sphere.normals[i] - sphere.positions[i] * 0.5f), 0.0f, 1e-5f);
   }
   expectWindingMatchesNormals(sphere, "sphere");
-  for (size_t t = 0; t < sphere.indices.size(); t += 3) { // no degenerate triangles
+  for (size_t t = 0; t < sphere.indices.size(); t += 3) {  // no degenerate triangles
     const glm::vec3 a = sphere.positions[sphere.indices[t]], b = sphere.positions[sphere.indices[t + 1]],
                     c = sphere.positions[sphere.indices[t + 2]];
     EXPECT_GT(glm::length(glm::cross(b - a, c - a)), 1e-6f);
@@ -200,12 +199,12 @@ TEST(Geometry, BoxIsFlatAndOutward) {
   EXPECT_EQ(box.indices.size(), 36u);
   for (size_t i = 0; i < box.positions.size(); ++i) {
     const glm::vec3 n = box.normals[i];
-    EXPECT_NEAR(std::abs(n.x) + std::abs(n.y) + std::abs(n.z), 1.0f, 1e-6f); // axis-aligned
+    EXPECT_NEAR(std::abs(n.x) + std::abs(n.y) + std::abs(n.z), 1.0f, 1e-6f);  // axis-aligned
     EXPECT_GT(glm::dot(n, box.positions[i]), 0.0f);
   }
   expectWindingMatchesNormals(box, "box");
   const Primitive quad = makeQuad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, 0);
-  EXPECT_EQ(quad.normals[0], glm::vec3(0, 0, 1)); // counter-clockwise seen from +z
+  EXPECT_EQ(quad.normals[0], glm::vec3(0, 0, 1));  // counter-clockwise seen from +z
 }
 
 TEST(Validate, AcceptsASmallScene) { EXPECT_TRUE(validate(smallValidScene()).ok()); }
@@ -248,7 +247,7 @@ TEST(Validate, RejectsMalformedPrimitives) {
   scene.materials[0].specularColorTexture.texture = 3;
   expectBadInput(scene, "missing texture");
   scene = smallValidScene();
-  scene.meshes[0].primitives[0].uvs.clear(); // no uvs at all is fine
+  scene.meshes[0].primitives[0].uvs.clear();  // no uvs at all is fine
   EXPECT_TRUE(validate(scene).ok());
   scene.meshes[0].primitives[0].positions[2].z = std::numeric_limits<float>::infinity();
   expectBadInput(scene, "not finite");

@@ -3,9 +3,9 @@
 #include <fstream>
 #include <string>
 
+#include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
-#include <gtest/gtest.h>
 
 #include "core/image_io.h"
 #include "scene/builtin.h"
@@ -54,7 +54,7 @@ class SceneFileTest : public ::testing::Test {
   fs::path dir_;
 };
 
-} // namespace
+}  // namespace
 
 TEST_F(SceneFileTest, ComposesOneObjTwiceWithTransforms) {
   Result<Scene> loaded = loadSceneFile(write("scene.json", R"({
@@ -196,8 +196,7 @@ TEST_F(SceneFileTest, RejectsPathsLeavingTheFolder) {
   expectRejected(R"({"models": [{"path": "../x.obj"}]})", "'..' is not allowed");
   expectRejected(R"({"models": [{"path": "/tmp/x.obj"}]})", "absolute path");
   expectRejected(R"({"models": [{"path": "https://example.com/x.obj"}]})", "URI");
-  expectRejected(R"({"models": [{"path": "tri.obj"}], "environment": {"map": "../sky.hdr"}})",
-                 "environment.map");
+  expectRejected(R"({"models": [{"path": "tri.obj"}], "environment": {"map": "../sky.hdr"}})", "environment.map");
 }
 
 TEST_F(SceneFileTest, RejectsMissingModelFile) {

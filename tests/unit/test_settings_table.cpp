@@ -90,8 +90,8 @@ TEST(SettingsTable, DrivesTheCommandLineOfRenderViewAndBench) {
     ASSERT_EQ(help.exitCode, 0) << help.output;
     for (const Setting& s : settingsTable()) {
       // bench sweeps these as axes of its own (lists of values), not as table options
-      const bool axis = use == kUseBench && (s.name == "mode" || s.name == "primary" || s.name == "max-depth" ||
-                                             s.name == "shadow-lights");
+      const bool axis = use == kUseBench &&
+                        (s.name == "mode" || s.name == "primary" || s.name == "max-depth" || s.name == "shadow-lights");
       if (axis) continue;
       const bool listed = help.output.find("--" + s.name + " ") != std::string::npos;
       EXPECT_EQ(listed, (s.uses & use) != 0) << command << " --" << s.name;
@@ -105,8 +105,10 @@ TEST(SettingsTable, DrivesTheCommandLineOfRenderViewAndBench) {
 
 TEST(SettingsTable, RenderJsonRecordsTheSettingsItRanWith) {
   const auto dir = test::testDir();
-  const test::RunResult r = test::runRayster("render builtin:cornell --size 32x18 --frames 1 --ao off --tonemap neutral "
-                                             "--json " + (dir / "r.json").string() + " -o " + (dir / "r.png").string());
+  const test::RunResult r = test::runRayster(
+      "render builtin:cornell --size 32x18 --frames 1 --ao off --tonemap neutral "
+      "--json " +
+      (dir / "r.json").string() + " -o " + (dir / "r.png").string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::ifstream f(dir / "r.json");
   const nlohmann::json j = nlohmann::json::parse(f);
@@ -117,5 +119,5 @@ TEST(SettingsTable, RenderJsonRecordsTheSettingsItRanWith) {
   EXPECT_EQ(s.at("denoise"), true);
 }
 
-} // namespace
-} // namespace rayster::render
+}  // namespace
+}  // namespace rayster::render

@@ -81,5 +81,5 @@ TEST(ViewerShaderReload, VariantsAreRecompiledWithTheirSource) {
   shaders::setOverride("raw_ao.rgen", raw);
 }
 
-} // namespace
-} // namespace rayster::app
+}  // namespace
+}  // namespace rayster::app

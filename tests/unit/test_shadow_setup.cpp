@@ -89,5 +89,5 @@ TEST(ShadowSetup, CascadesCoverTheCameraTarget) {
   GTEST_SKIP() << "builtin:spheres has no sun";
 }
 
-} // namespace
-} // namespace rayster::render
+}  // namespace
+}  // namespace rayster::render

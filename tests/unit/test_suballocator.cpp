@@ -65,8 +65,8 @@ TEST(SubAllocator, BestFitPicksSmallestHole) {
   a.free(*h300);
   a.free(*h100);
   a.free(*h200);
-  EXPECT_EQ(a.allocate(150, 1), 600u); // the 200 hole, not the 300 one
-  EXPECT_EQ(a.allocate(80, 1), 400u);  // the 100 hole
+  EXPECT_EQ(a.allocate(150, 1), 600u);  // the 200 hole, not the 300 one
+  EXPECT_EQ(a.allocate(80, 1), 400u);   // the 100 hole
   EXPECT_EQ(a.allocate(250, 1), 0u);
   EXPECT_EQ(a.largestFreeRange(), 50u);
 }
@@ -89,8 +89,7 @@ TEST(SubAllocator, CoalescesBackToOneRange) {
 }
 
 // Whether any gap between live allocations could hold `size` at `alignment`.
-bool shadowCouldFit(const std::map<uint64_t, uint64_t>& live, uint64_t total, uint64_t size,
-                    uint64_t alignment) {
+bool shadowCouldFit(const std::map<uint64_t, uint64_t>& live, uint64_t total, uint64_t size, uint64_t alignment) {
   uint64_t gapStart = 0;
   auto fits = [&](uint64_t begin, uint64_t end) {
     const uint64_t aligned = (begin + alignment - 1) & ~(alignment - 1);
@@ -106,7 +105,7 @@ bool shadowCouldFit(const std::map<uint64_t, uint64_t>& live, uint64_t total, ui
 TEST(SubAllocator, RandomisedNeverOverlaps) {
   constexpr uint64_t kSize = 1 << 20;
   SubAllocator a(kSize);
-  std::map<uint64_t, uint64_t> live; // shadow model: offset -> size
+  std::map<uint64_t, uint64_t> live;  // shadow model: offset -> size
   std::mt19937_64 rng(12345);
   int exhausted = 0;
   for (int op = 0; op < 10000; ++op) {
@@ -136,8 +135,8 @@ TEST(SubAllocator, RandomisedNeverOverlaps) {
       a.free(it->first);
       live.erase(it);
     }
-    const uint64_t liveBytes = std::accumulate(
-        live.begin(), live.end(), uint64_t(0), [](uint64_t s, const auto& kv) { return s + kv.second; });
+    const uint64_t liveBytes = std::accumulate(live.begin(), live.end(), uint64_t(0),
+                                               [](uint64_t s, const auto& kv) { return s + kv.second; });
     ASSERT_EQ(a.used(), liveBytes);
     ASSERT_EQ(a.allocationCount(), live.size());
   }
@@ -158,5 +157,5 @@ TEST(SubAllocatorDeathTest, MisuseAsserts) {
   EXPECT_DEATH(a.free(*offset), "unknown or freed");
 }
 
-} // namespace
-} // namespace rayster::rhi
+}  // namespace
+}  // namespace rayster::rhi

@@ -172,5 +172,5 @@ TEST_F(TonemapDevice, PassMatchesTheCurvesWithExactSrgb) {
   }
 }
 
-} // namespace
-} // namespace rayster::render
+}  // namespace
+}  // namespace rayster::render

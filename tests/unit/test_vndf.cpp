@@ -157,5 +157,5 @@ TEST(Dfg, TableMatchesNumericIntegration) {
   }
 }
 
-} // namespace
-} // namespace rayster
+}  // namespace
+}  // namespace rayster
