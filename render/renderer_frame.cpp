@@ -12,6 +12,8 @@ namespace rayster::render {
 
 // Passes used only here, declared next to their one caller.
 graph::ImageHandle traceSkyVisibility(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
+graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
+                                        uint32_t frameIndex, uint32_t seed);
 
 namespace {
 
@@ -145,6 +147,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   const uint32_t lights = shadowLights();
   const bool ao = aoInShadowImage(s), indirect = indirectOn(s), specularPass = specularOn(s);
   const bool sky = passSwitchOn(s, "sky-visibility");
+  const bool probes = indirect && passSettingText(s, "gi") == "probes";  // probes in the one-bounce path's place
   const bool denoise = s.denoise && (lights > 0 || ao || specularPass || indirect || manyLights || sky);
   FrameImages o;
   const graph::ImageHandle white = neutral.white(graph), black = neutral.black(graph);
@@ -223,15 +226,17 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   if (s.rawRays) {
     traceRawPrimary(graph, in);
     traceRawShadows(graph, in, gb, lights);
-    o.rawTwins =
-        traceRawTwins(graph, in, gb, {ao, manyLights, indirect, specularPass}, indirectQuarter(s), lightsPerHit());
+    o.rawTwins = traceRawTwins(graph, in, gb, {ao, manyLights, indirect && !probes, specularPass}, indirectQuarter(s),
+                               lightsPerHit());
   }
   if (specularPass) {
     o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit());
     o.specular = svgf("specular", o.specularRaw);
   }
   const graph::ImageHandle direct = manyLights ? svgf("direct", traceDirect(graph, in, gb)) : black;
-  if (indirect) {
+  if (probes) {
+    o.indirectRaw = o.indirect = traceProbeIrradiance(graph, in, gb, frameIndex, s.seed);
+  } else if (indirect) {
     o.indirectRaw = traceIndirect(graph, in, gb, surface.current, indirectQuarter(s));
     o.indirect = svgf("indirect", o.indirectRaw);
   }

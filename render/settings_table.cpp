@@ -212,6 +212,27 @@ Setting passSwitch(std::string name, std::string group, std::string help, bool d
   return s;
 }
 
+Setting passChoice(std::string name, std::string group, std::string help, std::vector<std::string> choices,
+                   std::string defaultChoice, uint32_t uses, bool restarts) {
+  Setting s{name, SettingKind::Choice, std::move(help), std::move(choices), 0, 0, std::move(group), uses, restarts};
+  s.get = [name, defaultChoice](const RenderSettings& r) {
+    auto it = r.passSettings.find(name);
+    return it == r.passSettings.end() ? defaultChoice : it->second;
+  };
+  s.set = [name, s](RenderSettings& r, std::string_view t) -> Status {
+    if (Status c = checkChoice(s, t); !c) return c;
+    r.passSettings[name] = std::string(t);
+    return okStatus();
+  };
+  return s;
+}
+
+std::string passSettingText(const RenderSettings& settings, std::string_view name) {
+  const Setting* s = findSetting(name);
+  RAYSTER_ASSERT(s, "passSettingText() of a name that is no registered setting");
+  return s->get(settings);
+}
+
 bool passSwitchOn(const RenderSettings& settings, std::string_view name) {
   const Setting* s = findSetting(name);
   RAYSTER_ASSERT(s && s->kind == SettingKind::Switch, "passSwitchOn() of a name that is no registered switch");

@@ -58,7 +58,11 @@ struct PassSetting {
 };
 Setting passSwitch(std::string name, std::string group, std::string help, bool defaultOn, uint32_t uses = kUseAll,
                    bool restarts = true);
+Setting passChoice(std::string name, std::string group, std::string help, std::vector<std::string> choices,
+                   std::string defaultChoice, uint32_t uses = kUseAll, bool restarts = true);
 // The value of a pass file's switch (its default when never set).
 bool passSwitchOn(const RenderSettings& settings, std::string_view name);
+// The value of any pass file's setting, as text (its default when never set).
+std::string passSettingText(const RenderSettings& settings, std::string_view name);
 
 }  // namespace rayster::render

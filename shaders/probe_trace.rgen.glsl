@@ -1,0 +1,91 @@
+#version 460
+#extension GL_EXT_ray_tracing : require
+#include "lib/common.glsl"
+#include "lib/frame.glsl"
+#include "lib/ray_flags.glsl"
+#include "lib/lights.glsl"
+#include "lib/light_select.glsl"
+#include "lib/light_ray.glsl"
+#include "lib/textures.glsl"
+#include "lib/surface.glsl"
+#include "lib/sphere.glsl"
+#include "lib/primary_payload.glsl"
+#include "lib/hit_surface.glsl"
+#include "lib/brdf.glsl"
+#include "lib/environment.glsl"
+#include "shared/probes.h"
+
+// Probe rays (gi-probe-trace, docs/techniques.md §16b): launch (raysPerProbe, probes). Ray r of
+// probe i leaves the probe in a rotated spherical-Fibonacci direction; a hit is shaded with its
+// emission, direct light from one light picked by importance (shadow ray) and, once the atlases
+// hold light, the probes' own irradiance at the hit (one more bounce every frame: multiple
+// bounces). A miss sees the environment. A hit on the back of a single-sided surface (the probe is
+// inside geometry) records no light and a negative distance (−0.2 t), which the updater reads.
+// Output (RGBA16F, texel (r, i)): rgb radiance (pre-exposed), a the hit distance.
+layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
+layout(set = 0, binding = 2, rgba16f) uniform writeonly image2D outRays;
+layout(set = 0, binding = 3) uniform sampler2D probeIrradianceTex;  // the frame before's (kProbeHistoryValid)
+layout(set = 0, binding = 4) uniform sampler2D probeVisibilityTex;
+layout(push_constant, scalar) uniform Push { ProbeGrid grid; };
+
+layout(location = 0) rayPayloadEXT PrimaryPayload payload;
+layout(location = 1) rayPayloadEXT uint visible;
+
+#include "lib/probes.glsl"
+
+float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
+  vec3 origin, dir;
+  float tMax;
+  if (!lightShadowRay(i, p, ng, hitRayOffset(p), rng, origin, dir, tMax)) return 0.0;
+  visible = 0u;
+  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT | sceneRayFlags(),
+              kMaskCastsShadow, 0, 0, 1, origin, 0.0, dir, tMax, 1);
+  return float(visible);
+}
+
+vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, inout uint rng) {
+  float invPdf;
+  uint chosen = selectLight(p, n, rng, invPdf);
+  if (chosen >= frame.lightCount) return vec3(0.0);
+  LightRecord light = loadLight(chosen);
+  vec3 l;
+  float dist;
+  vec3 incident = lightIncident(light, p, l, dist);
+  if (lightVisibility(chosen, p, ng, rng) == 0.0) return vec3(0.0);
+  float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
+  return evalBsdfCos(bsdf, n, v, l, 0.5 * widen) * incident * invPdf;
+}
+
+const uint kProbeStream = 0x9e3779b9u;
+
+void main() {
+  uint r = gl_LaunchIDEXT.x, probe = gl_LaunchIDEXT.y;
+  vec3 origin = probePosition(grid, probeCoord(grid, probe));
+  vec3 dir = probeRayDirection(grid, r);
+  uint rng = rngInit(uvec2(r, probe), frame.frameIndex, frame.seed ^ kProbeStream);
+  payload.t = -1.0;
+  // Casters only, as the indirect rays: a light's visible shape is direct light, counted already.
+  traceRayEXT(tlas, sceneRayFlags(), kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, grid.maxDistance, 0);
+  vec4 result;
+  if (payload.t < 0.0) {
+    result = vec4(environmentRadiance(dir), grid.maxDistance);
+  } else {
+    SurfacePoint sp;
+    MaterialRecord m;
+    surfaceAtHit(payload, origin, dir, sp, m);
+    bool backFace = (m.flags & kMaterialDoubleSided) == 0u && dot(sp.geometricNormal, dir) > 0.0;
+    if (backFace) {
+      result = vec4(0.0, 0.0, 0.0, -0.2 * payload.t);
+    } else {
+      GBufferValues gb = evaluateSurface(m, sp, origin);  // normals face the probe
+      vec3 hn = octDecode(gb.normals.xy), hng = octDecode(gb.normals.zw);
+      SurfaceBsdf bsdf = makeBsdf(srgbToLinear(gb.albedo.rgb), gb.material.g, gb.material.r, gb.specular, m.ior);
+      bsdf.diffuse *= 1.0 - gb.material.b;
+      vec3 radiance = gb.emissive.rgb + directFromOneLight(bsdf, sp.position, hn, hng, -dir, rng);
+      if ((grid.flags & kProbeHistoryValid) != 0u)
+        radiance += bsdf.diffuse / kPi * probeIrradiance(grid, sp.position, hn, -dir) * gb.albedo.a;
+      result = vec4(min(radiance, vec3(256.0)), payload.t);
+    }
+  }
+  imageStore(outRays, ivec2(r, probe), result);
+}

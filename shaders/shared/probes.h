@@ -1,0 +1,39 @@
+// Irradiance probes (DDGI: render/passes/gi_probes.cpp, docs/techniques.md §16b): the probe grid
+// and the layout of its atlases, shared by C++ and GLSL (push constants of every probe pass).
+#ifndef RAYSTER_SHARED_PROBES_H
+#define RAYSTER_SHARED_PROBES_H
+
+#include "types.h"  // relative: C++ includes shaders/shared/, GLSL shared/
+
+#ifdef __cplusplus
+namespace rayster::gpu {
+#endif
+
+// Octahedral tiles per probe: interior texels per side; each tile has a one-texel border that
+// repeats the octahedral neighbours, so bilinear filtering never reads another probe.
+RAYSTER_CONST uint kProbeIrradianceTexels = 8u;   // RGBA16F: rgb irradiance E (= π × cosine-weighted mean L)
+RAYSTER_CONST uint kProbeVisibilityTexels = 16u;  // RG32F: mean and mean square of the hit distance
+RAYSTER_CONST uint kProbeRaysPerProbe = 128u;     // rays traced per probe and frame
+// ProbeGrid::flags
+RAYSTER_CONST uint kProbeHistoryValid = 1u;  // the atlases of the frame before hold light: bounce through them
+
+struct ProbeGrid {
+  vec3 origin;          // world position of probe (0, 0, 0)
+  uint raysPerProbe;
+  vec3 spacing;         // between neighbouring probes, per axis
+  uint tilesPerRow;     // atlas columns (both atlases): probe i's tile is (i % tilesPerRow, i / tilesPerRow)
+  uvec3 counts;         // probes per axis (≥ 2 each); probe index = x + counts.x·(y + counts.y·z)
+  uint flags;           // kProbe*
+  vec4 rotation;        // this frame's random rotation of the ray directions (unit quaternion)
+  float hysteresis;     // weight of the previous atlas in the blend (0: this frame only)
+  float normalBias;     // lookup point offset along the normal, × the smallest spacing
+  float viewBias;       // and towards the viewer
+  float maxDistance;    // what a ray that misses records as its distance
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(ProbeGrid) == 80);
+} // namespace rayster::gpu
+#endif
+
+#endif

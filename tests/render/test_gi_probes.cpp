@@ -1,0 +1,102 @@
+// Irradiance probes (render/passes/gi_probes.cpp, --gi probes): the probe passes replace the
+// one-bounce path wherever indirect light is on and record nothing where it is off; their diffuse
+// indirect light carries more bounces, so the hybrid Cornell box gets closer to the path tracer's
+// energy than with the one-bounce path; the probe atlas is an AOV (the probe visualisation).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/image_io.h"
+#include "tests/render/run_rayster.h"
+
+namespace rayster::test {
+namespace {
+
+double meanLuminance(const ImageF& img) {
+  double sum = 0;
+  for (size_t i = 0; i < img.rgba.size(); i += 4)
+    sum += 0.2126 * img.rgba[i] + 0.7152 * img.rgba[i + 1] + 0.0722 * img.rgba[i + 2];
+  return sum / double(img.rgba.size() / 4);
+}
+
+class GiProbes : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = testDir(); }
+
+  ImageF render(const std::string& name, const std::string& args) {
+    const auto out = dir_ / (name + ".exr");
+    RunResult r = runRayster("render builtin:cornell --size 96x72 " + args + " -o " + out.string());
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    auto img = readExr(out);
+    EXPECT_TRUE(img.ok()) << r.output;
+    if (!img.ok()) return {};
+    EXPECT_EQ(img->width, 96);
+    EXPECT_EQ(img->height, 72);
+    for (float v : img->rgba) EXPECT_TRUE(std::isfinite(v));
+    return std::move(*img);
+  }
+
+  std::filesystem::path dir_;
+};
+
+TEST_F(GiProbes, ProbesReplaceThePathWhereIndirectLightIsOn) {
+  const std::string png = (dir_ / "out.png").string();
+  RunResult probes = runRayster("render builtin:cornell --size 48x32 --frames 2 --timings --gi probes -o " + png);
+  ASSERT_EQ(probes.exitCode, 0) << probes.output;
+  for (const char* p : {"gi-probe-trace", "gi-probe-update-irradiance", "gi-probe-update-visibility", "gi-probe-sample"})
+    EXPECT_NE(probes.output.find(p), std::string::npos) << p << "\n" << probes.output;
+  EXPECT_EQ(probes.output.find("rt-indirect"), std::string::npos) << probes.output;
+  EXPECT_EQ(probes.output.find("indirect-temporal"), std::string::npos) << probes.output;
+
+  RunResult path = runRayster("render builtin:cornell --size 48x32 --frames 2 --timings -o " + png);
+  ASSERT_EQ(path.exitCode, 0) << path.output;
+  EXPECT_NE(path.output.find("rt-indirect"), std::string::npos) << path.output;
+  EXPECT_EQ(path.output.find("gi-probe"), std::string::npos) << path.output;
+
+  RunResult off = runRayster("render builtin:cornell --size 48x32 --frames 2 --timings --gi probes --indirect off -o " + png);
+  ASSERT_EQ(off.exitCode, 0) << off.output;
+  EXPECT_EQ(off.output.find("gi-probe"), std::string::npos) << "off means gone\n" << off.output;
+}
+
+TEST_F(GiProbes, CornellBoxEnergyIsCloserToThePathTracerThanOneBounce) {
+  const ImageF reference = render("reference", "--mode pathtrace --frames 256");
+  const ImageF probes = render("probes", "--frames 32 --gi probes");
+  const ImageF path = render("path", "--frames 32");
+  const ImageF none = render("none", "--frames 32 --indirect off");
+  const double ref = meanLuminance(reference);
+  ASSERT_GT(ref, 0.0);
+  const double eProbes = meanLuminance(probes) / ref - 1.0, ePath = meanLuminance(path) / ref - 1.0,
+               eNone = meanLuminance(none) / ref - 1.0;
+  EXPECT_LT(std::abs(eProbes), std::abs(ePath)) << "probes " << eProbes << ", one bounce " << ePath;
+  EXPECT_LT(std::abs(eProbes), std::abs(eNone)) << "probes " << eProbes << ", no indirect light " << eNone;
+  // Where it stands (issue 14 asks ±5 %): the reflection bounce loop's hits and the mirror do not
+  // see the probes yet. Recorded, not asserted.
+  RecordProperty("energy_probes", std::to_string(eProbes));
+  RecordProperty("energy_one_bounce", std::to_string(ePath));
+  RecordProperty("energy_no_indirect", std::to_string(eNone));
+  std::printf("cornell mean luminance vs the path tracer: probes %+.3f, one bounce %+.3f, none %+.3f\n", eProbes, ePath,
+              eNone);
+}
+
+TEST_F(GiProbes, TheProbeAtlasIsAnAov) {
+  auto aovs = renderAovs(dir_, "builtin:cornell --size 48x32 --frames 4 --gi probes", {"gi-probe-irradiance", "gi-irradiance"});
+  ASSERT_EQ(aovs.size(), 2u);
+  const ImageF& atlas = aovs["gi-probe-irradiance"];
+  ASSERT_GT(atlas.width, 0);
+  EXPECT_EQ(atlas.width % 10, 0) << "8×8 tiles with a one-texel border";
+  float lo = 1e30f, hi = -1e30f;
+  for (size_t i = 0; i < atlas.rgba.size(); i += 4) {
+    ASSERT_TRUE(std::isfinite(atlas.rgba[i]));
+    lo = std::min(lo, atlas.rgba[i]);
+    hi = std::max(hi, atlas.rgba[i]);
+  }
+  EXPECT_GT(hi, lo) << "a lit atlas, not uniform";
+  EXPECT_GT(meanLuminance(aovs["gi-irradiance"]), 0.0);
+}
+
+} // namespace
+} // namespace rayster::test
