@@ -13,7 +13,7 @@ namespace rayster::render {
 // Passes used only here, declared next to their one caller.
 graph::ImageHandle traceSkyVisibility(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
 graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                        uint32_t frameIndex, uint32_t seed);
+                                        uint32_t frameIndex, uint32_t seed, ProbeLookup& lookup);
 
 namespace {
 
@@ -229,14 +229,15 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     o.rawTwins = traceRawTwins(graph, in, gb, {ao, manyLights, indirect && !probes, specularPass}, indirectQuarter(s),
                                lightsPerHit());
   }
+  // Probes first: the reflection bounce loop lights its hits from them too.
+  ProbeLookup probeLookup;
+  if (probes) o.indirectRaw = o.indirect = traceProbeIrradiance(graph, in, gb, frameIndex, s.seed, probeLookup);
   if (specularPass) {
-    o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit());
+    o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit(), probeLookup);
     o.specular = svgf("specular", o.specularRaw);
   }
   const graph::ImageHandle direct = manyLights ? svgf("direct", traceDirect(graph, in, gb)) : black;
-  if (probes) {
-    o.indirectRaw = o.indirect = traceProbeIrradiance(graph, in, gb, frameIndex, s.seed);
-  } else if (indirect) {
+  if (indirect && !probes) {
     o.indirectRaw = traceIndirect(graph, in, gb, surface.current, indirectQuarter(s));
     o.indirect = svgf("indirect", o.indirectRaw);
   }

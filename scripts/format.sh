@@ -4,7 +4,8 @@
 # 1 if there are any (for CI). Files given after the options (absolute, or relative to the
 # repository root) are formatted or checked instead of the whole tree.
 #
-# The tree is every tracked file (git ls-files), or every file under the checkout without git,
+# The tree is every tracked or new, not ignored file (git ls-files --cached --others
+# --exclude-standard: a file not yet added is checked too), or every file under the checkout without git,
 # except build*/, dist/, out/ and third-party folders (third_party/, external/, vendor/: none
 # today, nothing is vendored). GLSL is left alone: clang-format has no GLSL mode, and its C++
 # rules would reflow `layout(...)` declarations. shaders/shared/*.h are C++ as well and included.
@@ -44,7 +45,7 @@ list_files() {
   if [ $# -gt 0 ]; then
     printf '%s\0' "$@"
   elif git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
-    git ls-files -z -- '*.cpp' '*.h' '*.hpp' '*.cc'
+    git ls-files -z --cached --others --exclude-standard -- '*.cpp' '*.h' '*.hpp' '*.cc'
   else
     find . -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.hpp' -o -name '*.cc' \) -printf '%P\0'
   fi | grep -zEv '^(\./)?(build[^/]*|dist|out|third_party|external|vendor)/' || true

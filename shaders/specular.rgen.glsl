@@ -52,6 +52,15 @@ layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D outSpecular;
 #endif
 layout(set = 0, binding = 7) uniform sampler2D emissiveTex;  // .a: the first surface's exact ior
 layout(set = 0, binding = 8) uniform sampler2D specularGbufTex;  // encodeSpecular(): F0 tint, strength
+#ifndef RAW_RATE
+// Irradiance probes (--gi probes, lib/probes.glsl): the diffuse indirect light at the loop's hits,
+// when grid.flags has kProbeLookup (else 1×1 stand-ins, never read).
+#include "shared/probes.h"
+layout(set = 0, binding = 9) uniform sampler2D probeIrradianceTex;
+layout(set = 0, binding = 10) uniform sampler2D probeVisibilityTex;
+layout(push_constant, scalar) uniform Push { ProbeGrid grid; };
+#include "lib/probes.glsl"
+#endif
 
 #ifdef RAW_RATE
 layout(location = 0) rayPayloadEXT uint hitT;  // raw_t.rchit: the hit distance's bits; raw.rmiss keeps it
@@ -160,8 +169,9 @@ void main() {
     s.emissive = gb.emissive.rgb;
     s.tracedWeight = tracedSpecular(s.roughness, s.transmission) ? 1.0 : 0.0;
     s.envOcclusion = 1.0;  // no AO at hits
-    s.useIndirect = false;
-    s.indirect = vec3(0.0);
+    // With probes, a hit's diffuse indirect light is theirs (as at G-buffer pixels), not ambient + SH.
+    s.useIndirect = (grid.flags & kProbeLookup) != 0u;
+    s.indirect = s.useIndirect ? probeIrradiance(grid, s.p, s.n, s.v) : vec3(0.0);
     // A glossy lobe averages its hits over frames and pixels anyway: there one light picked by
     // importance (divided by its probability) stands in for the loop over all lights.
     radiance += beta * shadeSurface(s, true, glossy || frame.manyLights != 0u, rng);

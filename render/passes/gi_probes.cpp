@@ -18,10 +18,11 @@
 namespace rayster::render {
 namespace {
 
-const PassSetting kGi{passChoice("gi", "Effects",
-                                 "Diffuse indirect light where --indirect turns it on: path (one denoised bounce ray per "
-                                 "pixel) or probes (irradiance probes, multiple bounces)",
-                                 {"path", "probes"}, "path")};
+const PassSetting kGi{
+    passChoice("gi", "Effects",
+               "Diffuse indirect light where --indirect turns it on: path (one denoised bounce ray per "
+               "pixel) or probes (irradiance probes, multiple bounces)",
+               {"path", "probes"}, "path")};
 
 constexpr uint32_t kMaxProbesPerAxis = 8;  // on the scene's longest axis
 constexpr float kMaxHysteresis = 0.97f;    // the blend's weight of the previous atlas once converged
@@ -79,11 +80,12 @@ rhi::ImageDesc atlasDesc(const gpu::ProbeGrid& g, uint32_t interior, VkFormat fo
 }  // namespace
 
 graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                        uint32_t frameIndex, uint32_t seed) {
+                                        uint32_t frameIndex, uint32_t seed, ProbeLookup& lookup) {
   gpu::ProbeGrid grid = fitGrid(in.scene.bounds);
   const uint32_t probes = grid.counts.x * grid.counts.y * grid.counts.z;
-  const auto irradiance = graph.history(
-      "gi-probe-irradiance", atlasDesc(grid, gpu::kProbeIrradianceTexels, VK_FORMAT_R16G16B16A16_SFLOAT), kRadianceImage);
+  const auto irradiance =
+      graph.history("gi-probe-irradiance", atlasDesc(grid, gpu::kProbeIrradianceTexels, VK_FORMAT_R16G16B16A16_SFLOAT),
+                    kRadianceImage);
   const auto visibility =
       graph.history("gi-probe-visibility", atlasDesc(grid, gpu::kProbeVisibilityTexels, VK_FORMAT_R32G32_SFLOAT));
   const uint32_t frames = std::min(irradiance.frames, visibility.frames);
@@ -92,9 +94,8 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
   grid.hysteresis = std::min(kMaxHysteresis, float(frames) / float(frames + 1));
   grid.rotation = frameRotation(frameIndex, seed);
 
-  const graph::ImageHandle rays =
-      graph.createImage("gi-probe-rays", {VK_FORMAT_R16G16B16A16_SFLOAT, grid.raysPerProbe, probes, 1, kUsage},
-                        kRadianceImage);
+  const graph::ImageHandle rays = graph.createImage(
+      "gi-probe-rays", {VK_FORMAT_R16G16B16A16_SFLOAT, grid.raysPerProbe, probes, 1, kUsage}, kRadianceImage);
   const VkSampler linear = in.linear.handle();
   const rhi::RayTracingPipeline& trace = in.pipelines.rayTracing("probe_trace.rgen", [] {
     rhi::RayTracingPipelineDesc d;
@@ -107,7 +108,8 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
       "gi-probe-trace",
       [&](graph::PassBuilder& b) {
         b.pipeline(trace).bind("tlas", in.tlas).bind("outRays", rays);
-        b.bind("probeIrradianceTex", irradiance.previous, linear).bind("probeVisibilityTex", visibility.previous, linear);
+        b.bind("probeIrradianceTex", irradiance.previous, linear)
+            .bind("probeVisibilityTex", visibility.previous, linear);
         b.rays(uint64_t(probes) * grid.raysPerProbe * 2);  // a probe ray and a shadow ray at its hit
       },
       [&trace, grid, probes](graph::PassContext& pc) {
@@ -128,8 +130,10 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
         });
   }
   grid.flags |= gpu::kProbeHistoryValid;  // the lookup reads this frame's atlases
-  const graph::ImageHandle out = graph.createImage(
-      "gi-irradiance", {kRadianceFormat, in.size.width, in.size.height, 1, kUsage}, kRadianceImage);
+  lookup = {irradiance.next, visibility.next, grid};
+  lookup.grid.flags |= gpu::kProbeLookup;
+  const graph::ImageHandle out =
+      graph.createImage("gi-irradiance", {kRadianceFormat, in.size.width, in.size.height, 1, kUsage}, kRadianceImage);
   graph.addPass(
       "gi-probe-sample",
       [&](graph::PassBuilder& b) {
@@ -144,4 +148,4 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
   return out;
 }
 
-} // namespace rayster::render
+}  // namespace rayster::render

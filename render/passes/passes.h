@@ -8,6 +8,7 @@
 
 #include "graph/graph.h"
 #include "render/tonemap_curves.h"
+#include "shaders/shared/probes.h"
 
 namespace rayster::rhi {
 class Buffer;
@@ -96,8 +97,15 @@ RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, co
 
 // Reflections and refractions of mirror, metal and glass pixels (RGBA16F radiance, 0 elsewhere).
 // `bounces` (FrameConstants::maxSpecularBounces) and `lightsPerHit` only count its rays (PassInfo::rays).
+// Irradiance probes (render/passes/gi_probes.cpp, --gi probes): this frame's atlases and grid, for
+// passes that light their hits from the probes (the reflection bounce loop).
+struct ProbeLookup {
+  graph::ImageHandle irradiance, visibility;  // invalid: no probes
+  gpu::ProbeGrid grid{};                      // flags has kProbeLookup when valid
+};
+// `probes`: the probes light the diffuse part of the loop's hits (else ambient and the SH environment).
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t bounces,
-                                 uint32_t lightsPerHit);
+                                 uint32_t lightsPerHit, const ProbeLookup& probes = {});
 // Denoised by denoiseRadiance() (render/passes/denoise.h).
 
 // Ambient occlusion (R16F array, 1 unoccluded), 1 sample per pixel; 1 everywhere when

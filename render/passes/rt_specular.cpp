@@ -7,7 +7,7 @@
 namespace rayster::render {
 
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t bounces,
-                                 uint32_t lightsPerHit) {
+                                 uint32_t lightsPerHit, const ProbeLookup& probes) {
   graph::ImageHandle out =
       graph.createImage("specular-raw",
                         {kRadianceFormat, in.size.width, in.size.height, 1,
@@ -26,11 +26,18 @@ graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& i
         b.pipeline(pipe).bind("tlas", in.tlas);
         bindSurface(b, gb);
         b.bind("outSpecular", out);
+        // Without probes any image stands in (kProbeLookup unset: never read).
+        const bool lookup = probes.irradiance.valid();
+        b.bind("probeIrradianceTex", lookup ? probes.irradiance : gb.albedo, in.linear.handle());
+        b.bind("probeVisibilityTex", lookup ? probes.visibility : gb.material, in.linear.handle());
         // Per pixel and bounce a ray and a shadow ray per light shaded at its hit: a bound, since
         // most pixels are not specular and most paths end after a bounce.
         b.rays(uint64_t(in.size.width) * in.size.height * bounces * (1u + lightsPerHit));
       },
-      [&pipe, size = in.size](graph::PassContext& pc) { pipe.trace(pc.cmd, size.width, size.height); });
+      [&pipe, grid = probes.grid, size = in.size](graph::PassContext& pc) {
+        pc.push(grid);
+        pipe.trace(pc.cmd, size.width, size.height);
+      });
   const rhi::Pipeline& fill = in.pipelines.compute("specular_fill.comp");
   graph.addPass(
       "rt-specular-fill",

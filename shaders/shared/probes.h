@@ -16,24 +16,25 @@ RAYSTER_CONST uint kProbeVisibilityTexels = 16u;  // RG32F: mean and mean square
 RAYSTER_CONST uint kProbeRaysPerProbe = 128u;     // rays traced per probe and frame
 // ProbeGrid::flags
 RAYSTER_CONST uint kProbeHistoryValid = 1u;  // the atlases of the frame before hold light: bounce through them
+RAYSTER_CONST uint kProbeLookup = 2u;        // passes outside the probe passes (rt-specular): use the probes
 
 struct ProbeGrid {
-  vec3 origin;          // world position of probe (0, 0, 0)
+  vec3 origin;  // world position of probe (0, 0, 0)
   uint raysPerProbe;
-  vec3 spacing;         // between neighbouring probes, per axis
-  uint tilesPerRow;     // atlas columns (both atlases): probe i's tile is (i % tilesPerRow, i / tilesPerRow)
-  uvec3 counts;         // probes per axis (≥ 2 each); probe index = x + counts.x·(y + counts.y·z)
-  uint flags;           // kProbe*
-  vec4 rotation;        // this frame's random rotation of the ray directions (unit quaternion)
-  float hysteresis;     // weight of the previous atlas in the blend (0: this frame only)
-  float normalBias;     // lookup point offset along the normal, × the smallest spacing
-  float viewBias;       // and towards the viewer
-  float maxDistance;    // what a ray that misses records as its distance
+  vec3 spacing;       // between neighbouring probes, per axis
+  uint tilesPerRow;   // atlas columns (both atlases): probe i's tile is (i % tilesPerRow, i / tilesPerRow)
+  uvec3 counts;       // probes per axis (≥ 2 each); probe index = x + counts.x·(y + counts.y·z)
+  uint flags;         // kProbe*
+  vec4 rotation;      // this frame's random rotation of the ray directions (unit quaternion)
+  float hysteresis;   // weight of the previous atlas in the blend (0: this frame only)
+  float normalBias;   // lookup point offset along the normal, × the smallest spacing
+  float viewBias;     // and towards the viewer
+  float maxDistance;  // what a ray that misses records as its distance
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(ProbeGrid) == 80);
-} // namespace rayster::gpu
+}  // namespace rayster::gpu
 #endif
 
 #endif

@@ -47,7 +47,8 @@ TEST_F(GiProbes, ProbesReplaceThePathWhereIndirectLightIsOn) {
   const std::string png = (dir_ / "out.png").string();
   RunResult probes = runRayster("render builtin:cornell --size 48x32 --frames 2 --timings --gi probes -o " + png);
   ASSERT_EQ(probes.exitCode, 0) << probes.output;
-  for (const char* p : {"gi-probe-trace", "gi-probe-update-irradiance", "gi-probe-update-visibility", "gi-probe-sample"})
+  for (const char* p :
+       {"gi-probe-trace", "gi-probe-update-irradiance", "gi-probe-update-visibility", "gi-probe-sample"})
     EXPECT_NE(probes.output.find(p), std::string::npos) << p << "\n" << probes.output;
   EXPECT_EQ(probes.output.find("rt-indirect"), std::string::npos) << probes.output;
   EXPECT_EQ(probes.output.find("indirect-temporal"), std::string::npos) << probes.output;
@@ -57,7 +58,8 @@ TEST_F(GiProbes, ProbesReplaceThePathWhereIndirectLightIsOn) {
   EXPECT_NE(path.output.find("rt-indirect"), std::string::npos) << path.output;
   EXPECT_EQ(path.output.find("gi-probe"), std::string::npos) << path.output;
 
-  RunResult off = runRayster("render builtin:cornell --size 48x32 --frames 2 --timings --gi probes --indirect off -o " + png);
+  RunResult off =
+      runRayster("render builtin:cornell --size 48x32 --frames 2 --timings --gi probes --indirect off -o " + png);
   ASSERT_EQ(off.exitCode, 0) << off.output;
   EXPECT_EQ(off.output.find("gi-probe"), std::string::npos) << "off means gone\n" << off.output;
 }
@@ -83,7 +85,8 @@ TEST_F(GiProbes, CornellBoxEnergyIsCloserToThePathTracerThanOneBounce) {
 }
 
 TEST_F(GiProbes, TheProbeAtlasIsAnAov) {
-  auto aovs = renderAovs(dir_, "builtin:cornell --size 48x32 --frames 4 --gi probes", {"gi-probe-irradiance", "gi-irradiance"});
+  auto aovs =
+      renderAovs(dir_, "builtin:cornell --size 48x32 --frames 4 --gi probes", {"gi-probe-irradiance", "gi-irradiance"});
   ASSERT_EQ(aovs.size(), 2u);
   const ImageF& atlas = aovs["gi-probe-irradiance"];
   ASSERT_GT(atlas.width, 0);
@@ -98,5 +101,5 @@ TEST_F(GiProbes, TheProbeAtlasIsAnAov) {
   EXPECT_GT(meanLuminance(aovs["gi-irradiance"]), 0.0);
 }
 
-} // namespace
-} // namespace rayster::test
+}  // namespace
+}  // namespace rayster::test
