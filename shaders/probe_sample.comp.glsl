@@ -12,6 +12,7 @@ layout(set = 0, binding = 1) uniform sampler2D depthTex;
 layout(set = 0, binding = 2) uniform sampler2D normalTex;
 layout(set = 0, binding = 3) uniform sampler2D probeIrradianceTex;
 layout(set = 0, binding = 4) uniform sampler2D probeVisibilityTex;
+layout(set = 0, binding = 6) uniform sampler2D probeDataTex;
 layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D outIrradiance;
 layout(push_constant, scalar) uniform Push { ProbeGrid grid; };
 

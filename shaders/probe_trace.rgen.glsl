@@ -19,13 +19,15 @@
 // probe i leaves the probe in a rotated spherical-Fibonacci direction; a hit is shaded with its
 // emission, direct light from one light picked by importance (shadow ray) and, once the atlases
 // hold light, the probes' own irradiance at the hit (one more bounce every frame: multiple
-// bounces). A miss sees the environment. A hit on the back of a single-sided surface (the probe is
-// inside geometry) records no light and a negative distance (−0.2 t), which the updater reads.
+// bounces). A miss sees the environment. A hit on the back of a face records a negative distance
+// (−0.2 t), which the classifier reads (the probe may be inside geometry); on a single-sided
+// surface it also records no light.
 // Output (RGBA16F, texel (r, i)): rgb radiance (pre-exposed), a the hit distance.
 layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = 2, rgba16f) uniform writeonly image2D outRays;
 layout(set = 0, binding = 3) uniform sampler2D probeIrradianceTex;  // the frame before's (kProbeHistoryValid)
 layout(set = 0, binding = 4) uniform sampler2D probeVisibilityTex;
+layout(set = 0, binding = 5) uniform sampler2D probeDataTex;
 layout(push_constant, scalar) uniform Push { ProbeGrid grid; };
 
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
@@ -60,7 +62,7 @@ const uint kProbeStream = 0x9e3779b9u;
 
 void main() {
   uint r = gl_LaunchIDEXT.x, probe = gl_LaunchIDEXT.y;
-  vec3 origin = probePosition(grid, probeCoord(grid, probe));
+  vec3 origin = probePosition(grid, probeCoord(grid, probe)) + probeData(grid, probe).xyz;
   vec3 dir = probeRayDirection(grid, r);
   uint rng = rngInit(uvec2(r, probe), frame.frameIndex, frame.seed ^ kProbeStream);
   payload.t = -1.0;
@@ -73,8 +75,11 @@ void main() {
     SurfacePoint sp;
     MaterialRecord m;
     surfaceAtHit(payload, origin, dir, sp, m);
-    bool backFace = (m.flags & kMaterialDoubleSided) == 0u && dot(sp.geometricNormal, dir) > 0.0;
-    if (backFace) {
+    // The back of a face (by its winding): the probe may be inside geometry, which the classifier
+    // reads from a negative distance. A single-sided surface sends no light back; a double-sided
+    // one is shaded as usual (a thin wall or leaf seen from behind).
+    bool backFace = dot(sp.geometricNormal, dir) > 0.0;
+    if (backFace && (m.flags & kMaterialDoubleSided) == 0u) {
       result = vec4(0.0, 0.0, 0.0, -0.2 * payload.t);
     } else {
       GBufferValues gb = evaluateSurface(m, sp, origin);  // normals face the probe
@@ -84,7 +89,7 @@ void main() {
       vec3 radiance = gb.emissive.rgb + directFromOneLight(bsdf, sp.position, hn, hng, -dir, rng);
       if ((grid.flags & kProbeHistoryValid) != 0u)
         radiance += bsdf.diffuse / kPi * probeIrradiance(grid, sp.position, hn, -dir) * gb.albedo.a;
-      result = vec4(min(radiance, vec3(256.0)), payload.t);
+      result = vec4(min(radiance, vec3(256.0)), backFace ? -0.2 * payload.t : payload.t);
     }
   }
   imageStore(outRays, ivec2(r, probe), result);

@@ -58,6 +58,7 @@ layout(set = 0, binding = 8) uniform sampler2D specularGbufTex;  // encodeSpecul
 #include "shared/probes.h"
 layout(set = 0, binding = 9) uniform sampler2D probeIrradianceTex;
 layout(set = 0, binding = 10) uniform sampler2D probeVisibilityTex;
+layout(set = 0, binding = 11) uniform sampler2D probeDataTex;
 layout(push_constant, scalar) uniform Push { ProbeGrid grid; };
 #include "lib/probes.glsl"
 #endif

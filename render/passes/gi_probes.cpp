@@ -1,6 +1,7 @@
 // Dynamic diffuse GI from irradiance probes (DDGI; --gi probes, docs/techniques.md §16b): a probe
 // grid fitted to the scene's bounds; each frame every probe traces kProbeRaysPerProbe rays in a
-// randomly rotated spherical-Fibonacci set (gi-probe-trace), the rays update each probe's
+// randomly rotated spherical-Fibonacci set (gi-probe-trace), the rays relocate probes out of
+// geometry and classify them active or not (gi-probe-classify), update each probe's
 // octahedral irradiance and distance-moment tiles with hysteresis (gi-probe-update-irradiance,
 // gi-probe-update-visibility; the atlases are graph histories), and every G-buffer pixel looks up
 // its irradiance from the eight probes around it with Chebyshev visibility (gi-probe-sample). Probe
@@ -88,8 +89,9 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
                     kRadianceImage);
   const auto visibility =
       graph.history("gi-probe-visibility", atlasDesc(grid, gpu::kProbeVisibilityTexels, VK_FORMAT_R32G32_SFLOAT));
+  const auto data = graph.history("gi-probe-data", {VK_FORMAT_R16G16B16A16_SFLOAT, probes, 1, 1, kUsage});
   const uint32_t frames = std::min(irradiance.frames, visibility.frames);
-  grid.flags = frames > 0 ? gpu::kProbeHistoryValid : 0u;
+  grid.flags = (frames > 0 ? gpu::kProbeHistoryValid : 0u) | (data.frames > 0 ? gpu::kProbeDataValid : 0u);
   // A running mean while the history is short, then an exponential one (a cut restarts it).
   grid.hysteresis = std::min(kMaxHysteresis, float(frames) / float(frames + 1));
   grid.rotation = frameRotation(frameIndex, seed);
@@ -110,11 +112,22 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
         b.pipeline(trace).bind("tlas", in.tlas).bind("outRays", rays);
         b.bind("probeIrradianceTex", irradiance.previous, linear)
             .bind("probeVisibilityTex", visibility.previous, linear);
+        b.bind("probeDataTex", data.previous);
         b.rays(uint64_t(probes) * grid.raysPerProbe * 2);  // a probe ray and a shadow ray at its hit
       },
       [&trace, grid, probes](graph::PassContext& pc) {
         pc.push(grid);
         trace.trace(pc.cmd, grid.raysPerProbe, probes);
+      });
+  graph.addPass(
+      "gi-probe-classify",
+      [&](graph::PassBuilder& b) {
+        b.pipeline(in.pipelines.compute("probe_classify.comp"));
+        b.bind("raysTex", rays).bind("previousData", data.previous).bind("outData", data.next);
+      },
+      [grid, probes](graph::PassContext& pc) {
+        pc.push(grid);
+        vkCmdDispatch(pc.cmd, (probes + 63) / 64, 1, 1);
       });
   for (bool moments : {false, true}) {
     const graph::RenderGraph::History& atlas = moments ? visibility : irradiance;
@@ -129,8 +142,8 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
           vkCmdDispatch(pc.cmd, probes, 1, 1);
         });
   }
-  grid.flags |= gpu::kProbeHistoryValid;  // the lookup reads this frame's atlases
-  lookup = {irradiance.next, visibility.next, grid};
+  grid.flags |= gpu::kProbeHistoryValid | gpu::kProbeDataValid;  // the lookup reads this frame's atlases
+  lookup = {irradiance.next, visibility.next, data.next, grid};
   lookup.grid.flags |= gpu::kProbeLookup;
   const graph::ImageHandle out =
       graph.createImage("gi-irradiance", {kRadianceFormat, in.size.width, in.size.height, 1, kUsage}, kRadianceImage);
@@ -139,7 +152,7 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
       [&](graph::PassBuilder& b) {
         b.pipeline(in.pipelines.compute("probe_sample.comp")).bind("depthTex", gb.depth).bind("normalTex", gb.normals);
         b.bind("probeIrradianceTex", irradiance.next, linear).bind("probeVisibilityTex", visibility.next, linear);
-        b.bind("outIrradiance", out);
+        b.bind("probeDataTex", data.next).bind("outIrradiance", out);
       },
       [grid, size = in.size](graph::PassContext& pc) {
         pc.push(grid);

@@ -100,8 +100,8 @@ RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, co
 // Irradiance probes (render/passes/gi_probes.cpp, --gi probes): this frame's atlases and grid, for
 // passes that light their hits from the probes (the reflection bounce loop).
 struct ProbeLookup {
-  graph::ImageHandle irradiance, visibility;  // invalid: no probes
-  gpu::ProbeGrid grid{};                      // flags has kProbeLookup when valid
+  graph::ImageHandle irradiance, visibility, data;  // invalid: no probes
+  gpu::ProbeGrid grid{};                            // flags has kProbeLookup when valid
 };
 // `probes`: the probes light the diffuse part of the loop's hits (else ambient and the SH environment).
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t bounces,

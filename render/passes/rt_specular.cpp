@@ -30,6 +30,7 @@ graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& i
         const bool lookup = probes.irradiance.valid();
         b.bind("probeIrradianceTex", lookup ? probes.irradiance : gb.albedo, in.linear.handle());
         b.bind("probeVisibilityTex", lookup ? probes.visibility : gb.material, in.linear.handle());
+        b.bind("probeDataTex", lookup ? probes.data : gb.material);
         // Per pixel and bounce a ray and a shadow ray per light shaded at its hit: a bound, since
         // most pixels are not specular and most paths end after a bounce.
         b.rays(uint64_t(in.size.width) * in.size.height * bounces * (1u + lightsPerHit));

@@ -4,6 +4,7 @@
 // PROBES_NO_LOOKUP)
 //   uniform sampler2D probeIrradianceTex;  // linear filtering, clamp
 //   uniform sampler2D probeVisibilityTex;
+//   uniform sampler2D probeDataTex;        // (probe, 0): offset and state (probe_classify.comp)
 #ifndef RAYSTER_PROBES_GLSL
 #define RAYSTER_PROBES_GLSL
 
@@ -54,6 +55,11 @@ vec2 probeAtlasUv(ProbeGrid g, uint probe, vec3 dir, uint interior, vec2 atlasSi
 }
 
 #ifndef PROBES_NO_LOOKUP
+// A probe's relocation offset (xyz) and state (w: 1 active, 0 inactive), from probe_classify.comp.
+vec4 probeData(ProbeGrid g, uint probe) {
+  return (g.flags & kProbeDataValid) != 0u ? texelFetch(probeDataTex, ivec2(probe, 0), 0) : vec4(0.0, 0.0, 0.0, 1.0);
+}
+
 // Irradiance E at p (shading normal n, direction to the viewer v) from the eight probes of its grid
 // cell. Each probe counts with its trilinear weight, a smooth back-face weight (probes behind the
 // surface count little) and the Chebyshev bound of being visible from the probe's distance moments.
@@ -71,7 +77,9 @@ vec3 probeIrradiance(ProbeGrid g, vec3 p, vec3 n, vec3 v) {
     ivec3 offset = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
     ivec3 c = base + offset;
     uint probe = probeIndex(g, c);
-    vec3 probePos = probePosition(g, c);
+    vec4 data = probeData(g, probe);
+    if (data.w < 0.5) continue;  // inactive: inside geometry, or no surface near it
+    vec3 probePos = probePosition(g, c) + data.xyz;
     vec3 trilinear = mix(1.0 - alpha, alpha, vec3(offset));
     float weight = trilinear.x * trilinear.y * trilinear.z;
     vec3 toProbe = normalize(probePos - p);

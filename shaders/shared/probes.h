@@ -17,6 +17,11 @@ RAYSTER_CONST uint kProbeRaysPerProbe = 128u;     // rays traced per probe and f
 // ProbeGrid::flags
 RAYSTER_CONST uint kProbeHistoryValid = 1u;  // the atlases of the frame before hold light: bounce through them
 RAYSTER_CONST uint kProbeLookup = 2u;        // passes outside the probe passes (rt-specular): use the probes
+RAYSTER_CONST uint kProbeDataValid = 4u;     // probeDataTex holds each probe's offset and state (else 0, active)
+// Relocation and classification (probe_classify.comp), in units of the grid's smallest spacing.
+RAYSTER_CONST float kProbeBackfaceFraction = 0.25;  // more back-face hits than this: the probe is inside geometry
+RAYSTER_CONST float kProbeMinFrontDistance = 0.2;   // nearer a surface than this: pushed away from it
+RAYSTER_CONST float kProbeMaxOffset = 0.45;         // of the spacing per axis: a probe stays in its cell
 
 struct ProbeGrid {
   vec3 origin;  // world position of probe (0, 0, 0)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -99,6 +100,45 @@ TEST_F(GiProbes, TheProbeAtlasIsAnAov) {
   }
   EXPECT_GT(hi, lo) << "a lit atlas, not uniform";
   EXPECT_GT(meanLuminance(aovs["gi-irradiance"]), 0.0);
+}
+
+// Relocation and classification (probe_classify.comp): a solid block in the middle of a floor holds
+// probes of the fitted grid (docs/techniques.md §16b: 8 × 3 × 8 over these bounds, x and z
+// probes 3 and 4 at ±0.55 inside the block's ±1). Each of them ends inactive or moved out of it;
+// a probe 0.04 above the floor is pushed up from it and stays active.
+TEST_F(GiProbes, ProbesInsideGeometryAreMovedOutOrSwitchedOff) {
+  std::ofstream(dir_ / "grey.mtl") << "newmtl grey\nKd 0.5 0.5 0.5\nNs 0\nillum 2\n";
+  std::ofstream obj(dir_ / "block.obj");
+  obj << "mtllib grey.mtl\nusemtl grey\nv -4 0 4\nv 4 0 4\nv 4 0 -4\nv -4 0 -4\nf 1 2 3 4\n";
+  // A closed cube, faces outward (counter-clockwise seen from outside).
+  obj << "v -1 0 -1\nv 1 0 -1\nv 1 2 -1\nv -1 2 -1\nv -1 0 1\nv 1 0 1\nv 1 2 1\nv -1 2 1\n";
+  obj << "f 5 8 7 6\nf 9 10 11 12\nf 5 9 12 8\nf 6 7 11 10\nf 8 12 11 7\nf 5 6 10 9\n";
+  obj.close();
+  auto aovs = renderAovs(dir_, (dir_ / "block.obj").string() + " --size 48x32 --frames 16 --gi probes --indirect on",
+                         {"gi-probe-data"});
+  ASSERT_EQ(aovs.size(), 1u);
+  const ImageF& data = aovs["gi-probe-data"];
+  ASSERT_EQ(data.width, 8 * 3 * 8);
+  ASSERT_EQ(data.height, 1);
+  auto at = [&](int x, int y, int z) { return &data.rgba[size_t(x + 8 * (y + 3 * z)) * 4]; };
+  const float spacingX = 7.68f / 7.0f, spacingY = 1.92f / 2.0f;
+  int handled = 0;
+  for (int x : {3, 4})
+    for (int y : {0, 1, 2})
+      for (int z : {3, 4}) {
+        const float* d = at(x, y, z);
+        for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(d[c]));
+        const float px = -3.84f + x * spacingX + d[0], py = 0.04f + y * spacingY + d[1],
+                    pz = -3.84f + z * spacingX + d[2];
+        const bool inside = std::abs(px) < 1.0f && std::abs(pz) < 1.0f && py > 0.0f && py < 2.0f;
+        handled += d[3] < 0.5f || !inside ? 1 : 0;
+        EXPECT_TRUE(d[3] < 0.5f || !inside)
+            << "probe " << x << "," << y << "," << z << " active inside the block at " << px << "," << py << "," << pz;
+      }
+  EXPECT_EQ(handled, 12);
+  const float* corner = at(0, 0, 0);
+  EXPECT_GT(corner[1], 0.05f) << "pushed up, away from the floor 0.04 below it";
+  EXPECT_GT(corner[3], 0.5f) << "active: the floor is right there";
 }
 
 }  // namespace
