@@ -66,8 +66,12 @@ void generateFlatNormals(Primitive& prim) {
 
 uint32_t defaultMaterial(MeshBuilder& builder) {
   if (!builder.defaultMaterial) {
+    // glTF 2.0 §3.9.2: a primitive without a material uses the default material, whose
+    // pbrMetallicRoughness has every default: metallic 1 (scene::Material's own default is a
+    // dielectric, as OBJ and the built-in scenes expect), roughness 1, white base colour.
     Material material;
     material.name = "default";
+    material.metallic = 1.0f;
     builder.defaultMaterial = uint32_t(builder.scene.materials.size());
     builder.scene.materials.push_back(material);
   }
