@@ -105,20 +105,7 @@ void main() {
 
 #else
 
-// Direct light at a hit from one light chosen in proportion to its importance (lib/light_select.glsl:
-// exact over few lights, resampled candidates over many), divided by the probability of the pick.
-vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, inout uint rng) {
-  float invPdf;
-  uint chosen = selectLight(p, n, rng, invPdf);
-  if (chosen >= frame.lightCount) return vec3(0.0);
-  LightRecord light = loadLight(chosen);
-  vec3 l;
-  float dist;
-  vec3 incident = lightIncident(light, p, l, dist);
-  if (lightVisibility(chosen, p, ng, rng) == 0.0) return vec3(0.0);
-  float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
-  return evalBsdfCos(bsdf, n, v, l, 0.5 * widen) * incident * invPdf;
-}
+#include "lib/one_light.glsl"
 
 void main() {
   ivec2 px = indirectPixel(gl_LaunchIDEXT.xy);  // at quarter rate, its 2×2 block's pixel of this frame

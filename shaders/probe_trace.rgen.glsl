@@ -45,18 +45,7 @@ float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
   return float(visible);
 }
 
-vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, inout uint rng) {
-  float invPdf;
-  uint chosen = selectLight(p, n, rng, invPdf);
-  if (chosen >= frame.lightCount) return vec3(0.0);
-  LightRecord light = loadLight(chosen);
-  vec3 l;
-  float dist;
-  vec3 incident = lightIncident(light, p, l, dist);
-  if (lightVisibility(chosen, p, ng, rng) == 0.0) return vec3(0.0);
-  float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
-  return evalBsdfCos(bsdf, n, v, l, 0.5 * widen) * incident * invPdf;
-}
+#include "lib/one_light.glsl"
 
 const uint kProbeStream = 0x9e3779b9u;
 
