@@ -77,6 +77,11 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   j["seed"] = s.seed;
   j["mode"] = render::modeName(out.modeUsed);
   j["primary"] = render::primaryName(out.primaryUsed);
+  j["exposure"] = {{"mode", s.exposureMode == render::ExposureMode::Auto ? "auto"
+                            : s.exposureMode == render::ExposureMode::Ev ? "ev"
+                                                                         : "ev100"},
+                   {"multiplier", out.exposure},
+                   {"ev100", out.ev100}};
   j["tonemap"] = render::tonemapperName(s.tonemap);
   j["taa"] = s.taa;
   j["culling"] = s.culling;

@@ -1,5 +1,7 @@
 #include "app/settings_cli.h"
 
+#include <algorithm>
+
 #include <CLI/CLI.hpp>
 
 namespace rayster::app {
@@ -31,6 +33,8 @@ Status applySettings(const SettingValues& values, render::RenderSettings& settin
   for (const auto& [name, value] : values) {
     const render::Setting* s = render::findSetting(name);
     if (!s) return makeError(ExitCode::BadArguments, "unknown setting '{}'", name);
+    if (!s->excludes.empty() && values.count(s->excludes))
+      return makeError(ExitCode::BadArguments, "--{} and --{} cannot be given together", s->name, s->excludes);
     if (Status ok = s->set(settings, value); !ok) return ok;
   }
   return okStatus();
@@ -47,8 +51,11 @@ nlohmann::json settingsJson(const render::RenderSettings& settings) {
       case render::SettingKind::Integer:
         j[s.name] = std::stoll(v);
         break;
-      case render::SettingKind::Real:
-        j[s.name] = std::stod(v);
+      case render::SettingKind::Real:  // a number, or one of its named values ("auto")
+        if (std::find(s.choices.begin(), s.choices.end(), v) != s.choices.end())
+          j[s.name] = v;
+        else
+          j[s.name] = std::stod(v);
         break;
       case render::SettingKind::Choice:
         j[s.name] = v;

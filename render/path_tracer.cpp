@@ -6,6 +6,7 @@
 
 #include "core/log.h"
 #include "graph/graph.h"
+#include "render/exposure.h"
 #include "render/gpu_scene.h"
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
@@ -14,7 +15,7 @@
 
 namespace rayster::render {
 
-Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTraceResources& r,
+Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTraceResources& r, float exposure,
                                         const std::function<void(uint32_t)>& writeConstants) {
   if (s.frames == 0) return makeError(ExitCode::BadArguments, "--mode pathtrace needs at least one sample");
   const size_t skipped =
@@ -75,7 +76,6 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
   std::memcpy(out.ldr.rgba.data(), ldrReadback.mapped(), pixels * 4);
   out.hdr = ImageF::make(int(s.width), int(s.height));
   std::memcpy(out.hdr.rgba.data(), meanReadback.mapped(), pixels * 16);
-  const float exposure = std::exp2(s.exposureEv);  // the sources were pre-exposed (lib/frame.glsl)
   if (variance) {
     // Variance of the mean: (E[x²] − E[x]²) · n/(n − 1) / n per channel; 0 with one sample.
     ImageF v = ImageF::make(int(s.width), int(s.height));
@@ -91,7 +91,9 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
     }
     out.aovs.emplace_back("variance", std::move(v));
   }
-  unexpose(out.hdr, exposure);
+  out.exposure = exposure;
+  out.ev100 = ev100FromExposure(exposure);
+  unexpose(out.hdr, exposure);  // the sources were pre-exposed (lib/frame.glsl)
   summarisePasses(passOrder, passTimes, passInfo, out);
   return out;
 }

@@ -45,8 +45,9 @@ struct PathTraceResources {
 
 class PathTracer {
  public:
-  // `writeConstants(f)` fills the FrameConstants of sample f (frameIndex f, no jitter).
-  Result<RenderOutput> render(const RenderSettings& s, const PathTraceResources& r,
+  // `writeConstants(f)` fills the FrameConstants of sample f (frameIndex f, no jitter), with the
+  // (pre-)exposure `exposure` that the HDR outputs are divided back by.
+  Result<RenderOutput> render(const RenderSettings& s, const PathTraceResources& r, float exposure,
                               const std::function<void(uint32_t)>& writeConstants);
 };
 

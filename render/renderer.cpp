@@ -14,6 +14,7 @@
 #include "render/renderer_impl.h"
 #include "render/settings_table.h"
 #include "rhi/memory.h"
+#include "shaders/shared/exposure.h"
 #include "shaders/shared/types.h"
 
 namespace rayster::render {
@@ -118,7 +119,7 @@ glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::C
   fc.worldFromClip = glm::mat4(glm::inverse(jittered));
   fc.cameraPosition = glm::vec4(cam.position, 1.0f);
   // Every source is pre-exposed (lib/frame.glsl: lights and emission in the shaders, the rest here).
-  const float exposure = std::exp2(s.exposureEv);
+  const float exposure = this->exposure.exposure();
   fc.ambient = glm::vec4(scene.ambient * exposure, 0.0f);
   fc.size = {s.width, s.height};
   fc.frameIndex = frameIndex;
@@ -128,6 +129,7 @@ glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::C
   fc.aoLayer = aoInShadowImage(s) ? shadowLights() : 0u;
   fc.manyLights = manyLights ? 1u : 0u;
   fc.exposure = exposure;
+  fc.exposureRatio = this->exposure.ratio();
   fc.geometries = gpu.geometries.address();
   fc.instances = gpu.instances.address();
   fc.materials = gpu.materials.address();
@@ -245,14 +247,44 @@ Result<RenderOutput> Renderer::Impl::renderPathTraced(const RenderSettings& s) {
   if (s.cameraPath || (scene.animated() && s.animate))
     log::info("--mode pathtrace renders the static camera and the rest pose");
   if (!pathTracer) pathTracer = std::make_unique<PathTracer>();
-  manyLights = false;
+  beginExposure(s, **cam);
   const PathTraceResources r{ctx, gpu, pipelines, constants, nearest, linear, transients, histories, commands, timers};
-  auto out = pathTracer->render(s, r, [&](uint32_t f) {
+  auto write = [&](uint32_t f) {
     frameIndex = f;
+    exposure.beginFrame(true);  // one exposure for the whole accumulation
     writeConstants(s, **cam, glm::vec2(0.0f), nullptr);
-  });
+  };
+  if (exposure.automatic()) {
+    // Metered as the hybrid meters the same view (its metering frames, traced primaries): the
+    // reference and the hybrid render a scene at one exposure, so their images compare as they are.
+    RenderSettings meter = s;
+    meter.mode = Mode::Hybrid;
+    meter.primary = Primary::Traced;
+    meter.aovs.clear();
+    if (Status begun = beginRun(meter); !begun) return begun.error();
+    for (uint32_t k = 0; k < kMeterFrames; ++k)
+      if (renderFrame({.meter = true}); run->meterDistance <= kMeterSettled) break;
+    run.reset();
+    exposure.beginFrame(true);
+    log::info("exposure: auto, EV100 {:.2f} (metered by the hybrid)", exposure.ev100());
+  }
+  manyLights = false;
+  auto out = pathTracer->render(s, r, exposure.exposure(), write);
   if (out) out->scene = sceneStats();
   return out;
+}
+
+void Renderer::Impl::beginExposure(const RenderSettings& s, const scene::Camera& cam) {
+  const float environment = 0.282095f * glm::dot(gpu.environment.irradianceSh[0], glm::vec3(0.2126f, 0.7152f, 0.0722f));
+  exposure.begin(s, estimateEv100(scene, cam, std::max(environment, 0.0f)));
+  if (!exposure.automatic() || exposureHistogram.handle() != VK_NULL_HANDLE) return;
+  const VkDeviceSize bytes = gpu::kExposureHistograms * gpu::kExposureBins * sizeof(uint32_t);
+  exposureHistogram = rhi::Buffer(
+      ctx, bytes,
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+      rhi::MemoryUsage::GpuOnly, "exposure-histogram");
+  exposureReadback =
+      rhi::Buffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, rhi::MemoryUsage::Readback, "exposure-readback");
 }
 
 Status Renderer::Impl::beginRun(const RenderSettings& s) {
@@ -268,6 +300,7 @@ Status Renderer::Impl::beginRun(const RenderSettings& s) {
   gpu.cull->enabled = s.culling;
   RenderOutput& out = run->out;
   frameIndex = 0;
+  beginExposure(s, *cam);
   const bool rasterMode = s.mode == Mode::Raster;
   out.modeUsed = s.mode;
   // The raster mode shadows the first shadowLights lights from shadow maps and leaves the rest
@@ -305,8 +338,22 @@ Status Renderer::Impl::beginRun(const RenderSettings& s) {
 
 Result<RenderOutput> Renderer::Impl::render(const RenderSettings& s) {
   if (auto begun = beginRun(s); !begun) return begun.error();
-  for (uint32_t f = 0; f < s.frames; ++f) {
-    renderFrame({.readback = f + 1 == s.frames});
+  run->adaptExposure = s.cameraPath || run->animated || !s.moves.empty();
+  if (exposure.automatic()) {
+    // The first frame of the shot, rendered until its metered exposure holds (a frame rendered far
+    // from its exposure clips in fp16 and in the firefly clamps, so its reading is re-taken at the
+    // exposure it gave): every output frame then starts from the same exposure, whatever came before.
+    uint32_t k = 0;
+    while (k < kMeterFrames) {
+      renderFrame({.meter = true});
+      ++k;
+      if (run->failure || run->meterDistance <= kMeterSettled) break;
+    }
+    log::info("exposure: auto, EV100 {:.2f} (metered in {} frame{})", exposure.ev100(), k, k == 1 ? "" : "s");
+    gpu.cull->visibilityFresh = true;  // the first output frame culls as if nothing came before
+  }
+  for (uint32_t f = 0; f < s.frames || run->failure; ++f) {
+    if (!run->failure) renderFrame({.readback = f + 1 == s.frames});
     if (run->failure) {
       Error e = *run->failure;
       ctx.waitIdle();
@@ -343,7 +390,9 @@ Result<RenderOutput> Renderer::render(const RenderSettings& settings) {
 Status Renderer::beginRun(const RenderSettings& settings) {
   if (settings.mode != Mode::Hybrid)
     return makeError(ExitCode::BadArguments, "--mode {} is not implemented yet", modeName(settings.mode));
-  return impl_->beginRun(settings);
+  Status begun = impl_->beginRun(settings);
+  if (begun) impl_->run->adaptExposure = true;  // an interactive run: the exposure follows the view
+  return begun;
 }
 
 void Renderer::updateSettings(const RenderSettings& settings) {

@@ -26,6 +26,9 @@ namespace rayster::render {
 struct GpuScene;
 
 enum class Primary { Raster, Traced, Auto };
+// Exposure (render/exposure.h): metered from the frame's luminance, or fixed as a multiplier 2^EV
+// (--exposure EV) or photographically (--ev100 N: 1 / (1.2 · 2^N)).
+enum class ExposureMode { Auto, Ev, Ev100 };
 const char* primaryName(Primary p);
 
 // What renders the frame: the hybrid pipeline, the reference path tracer, or rasterisation only
@@ -50,7 +53,10 @@ struct RenderSettings {
   uint32_t seed = 0;
   Mode mode = Mode::Hybrid;
   Primary primary = Primary::Auto;
-  float exposureEv = 0.0f;
+  ExposureMode exposureMode = ExposureMode::Auto;
+  float exposureEv = 0.0f;            // ExposureMode::Ev
+  float ev100 = 0.0f;                 // ExposureMode::Ev100
+  float exposureCompensation = 0.0f;  // EV added to the metered exposure (auto only)
   Tonemapper tonemap = Tonemapper::Aces;
   // Temporal anti-aliasing: jitters the primaries by a sub-pixel Halton(2,3) offset each frame and
   // resolves against a reprojected history, so a static view converges to a supersampled image.
@@ -132,6 +138,8 @@ struct RenderOutput {
   std::vector<std::pair<std::string, ImageF>> aovs;  // raw values, RGBA float (see aovNames())
   Mode modeUsed = Mode::Hybrid;
   Primary primaryUsed = Primary::Raster;
+  // The exposure of the last frame: the linear multiplier the light was rendered with, and its EV100.
+  float exposure = 1.0f, ev100 = 0.0f;
   double rasterGBufferMs = -1, tracedGBufferMs = -1;  // measured by --primary auto, else -1
   std::vector<PassStats> passes;                      // GPU time per pass over all frames
   double frameMedianMs = 0;                           // sum of the passes' medians
@@ -166,6 +174,11 @@ struct FrameControl {
   bool moving = false;                  // the camera moves: denoisers keep short histories
   bool readback = false;                // read the LDR, HDR and AOVs back (endRun returns them)
   bool present = false;                 // copy the LDR image into outputImage()
+  // Auto exposure: seconds since the previous frame (0: 1/pathFps), what the exposure adapts over.
+  float dtSeconds = 0.0f;
+  // A metering frame of a headless run (Impl::render): a first frame whose only product is the
+  // exposure reading; left out of the run's frame count and statistics.
+  bool meter = false;
 };
 
 // One frame's GPU time per pass, from the graph's timestamps.
@@ -175,6 +188,7 @@ struct FrameStats {
   Primary primaryUsed = Primary::Raster;
   int64_t visibleDraws = -1;  // raster G-buffer draws after culling (-1: traced primaries)
   scene::Camera camera;       // the camera the frame was rendered with
+  float exposure = 1.0f;      // the frame's exposure (render/exposure.h)
 };
 
 class Renderer {

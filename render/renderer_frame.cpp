@@ -7,13 +7,14 @@
 #include "render/passes/cull.h"
 #include "render/renderer_impl.h"
 #include "render/settings_table.h"
+#include "shaders/shared/exposure.h"
 
 namespace rayster::render {
 
 // Passes used only here, declared next to their one caller.
 graph::ImageHandle traceSkyVisibility(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
 graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                        uint32_t frameIndex, uint32_t seed, ProbeLookup& lookup);
+                                        uint32_t frameIndex, uint32_t seed, float historyScale, ProbeLookup& lookup);
 
 namespace {
 
@@ -36,7 +37,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   Run& r = *run;
   const RenderSettings& s = r.settings;
   RenderOutput& out = r.out;
-  const uint32_t f = r.frame++;
+  const uint32_t f = control.meter ? 0u : r.frame++;  // a metering frame is the shot's first, again
   const bool rasterMode = s.mode == Mode::Raster;
   FrameStats stats;
   const Clock::time_point frameStart = Clock::now();
@@ -53,6 +54,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   const bool cut = f == 0 || control.cut || isCameraCut(r.prevCamera, camera) ||
                    std::find(s.cuts.begin(), s.cuts.end(), f) != s.cuts.end();
   histories.beginFrame(f, cut);
+  exposure.beginFrame(cut);
   const glm::vec2 jitter = s.taa ? jitterNdc(f, s.width, s.height) : glm::vec2(0.0f);
   r.prevClipFromWorld = writeConstants(s, camera, jitter, cut ? nullptr : &r.prevClipFromWorld);
   r.prevCamera = camera;
@@ -87,6 +89,11 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
     hdr = resolveTaa(graph, in, {hdr, gb.depth, taa.previous, taa.next, gb.motion, taa.frames});
   }
   images.hdr = hdr;
+  const bool meter = exposure.automatic() && (control.meter || r.adaptExposure);
+  if (meter)
+    meterExposure(graph, in, hdr, gb, exposure.exposure(),
+                  graph.importBuffer("exposure-histogram", &exposureHistogram, &exposureHistogramState),
+                  graph.importBuffer("exposure-readback", &exposureReadback, &exposureReadbackState));
   graph::ImageHandle ldr = tonemap(graph, in, hdr, {s.tonemap, s.seed});
   if (control.present)
     copyToOutput(graph, ldr);
@@ -112,7 +119,14 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   ctx.wait(submitted);
   const double wallMs = msSince(frameStart);
   histories.endFrame();
-  const bool measured = f >= s.warmupFrames || s.warmupFrames >= s.frames;  // never an empty sample
+  if (meter) {
+    const auto* bins = static_cast<const uint32_t*>(exposureReadback.mapped());
+    const float dt = control.dtSeconds > 0.0f ? control.dtSeconds : 1.0f / s.pathFps;
+    r.meterDistance =
+        exposure.meter({bins, gpu::kExposureHistograms * gpu::kExposureBins}, dt, /*snap*/ control.meter || cut);
+  }
+  // never an empty sample; metering frames are not the run's
+  const bool measured = (f >= s.warmupFrames || s.warmupFrames >= s.frames) && !control.meter;
   double gpuMs = 0;
   for (auto& t : graph.readTimings(timers)) {
     if (!t.info.reported()) continue;
@@ -135,6 +149,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   out.visibleDraws = stats.visibleDraws = out.primaryUsed == Primary::Raster ? int64_t(visibleDraws(gpu)) : -1;
   out.totalDraws = uint32_t(gpu.draws.size());
   stats.camera = camera;
+  stats.exposure = exposure.exposure();
   return stats;
 }
 
@@ -172,7 +187,9 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
                             camera.zFar),
                surfaceHistory.previous};
   }
-  auto temporalFor = [&](uint32_t frames) { return TemporalState{moving, surfaceHistory.frames == 0 || frames == 0}; };
+  auto temporalFor = [&](uint32_t frames) {
+    return TemporalState{moving, surfaceHistory.frames == 0 || frames == 0, exposure.ratio()};
+  };
   // An SVGF signal's colour and moments histories ("<name>-history", "<name>-moments").
   auto svgf = [&](const std::string& name, graph::ImageHandle raw) {
     if (!denoise) return raw;
@@ -231,7 +248,8 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   }
   // Probes first: the reflection bounce loop lights its hits from them too.
   ProbeLookup probeLookup;
-  if (probes) o.indirectRaw = o.indirect = traceProbeIrradiance(graph, in, gb, frameIndex, s.seed, probeLookup);
+  if (probes)
+    o.indirectRaw = o.indirect = traceProbeIrradiance(graph, in, gb, frameIndex, s.seed, exposure.ratio(), probeLookup);
   if (specularPass) {
     o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit(), probeLookup);
     o.specular = svgf("specular", o.specularRaw);

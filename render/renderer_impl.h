@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 
 #include "graph/graph.h"
+#include "render/exposure.h"
 #include "render/gpu_scene.h"
 #include "render/instance_motion.h"
 #include "render/neutral_images.h"
@@ -36,6 +37,12 @@ inline double msSince(Clock::time_point t0) {
 // Timestamp regions per frame: the hybrid frame has ~35 passes with every denoiser on (each à-trous
 // step is its own pass); a full pool silently drops the last passes' times.
 inline constexpr uint32_t kMaxTimedPasses = 96;
+
+// Auto exposure of a headless run (Impl::render): metering frames before the first output frame,
+// until the reading lies within kMeterSettled EV of the exposure it was taken at (the path tracer
+// meters with the hybrid's metering frames too).
+inline constexpr uint32_t kMeterFrames = 3;
+inline constexpr float kMeterSettled = 0.5f;
 
 // What one frame's passes produced, for lighting, TAA and the AOVs: each effect's raw and
 // denoised image (the same handle when the effect is off or the raster mode made it), the HDR
@@ -66,6 +73,11 @@ struct Renderer::Impl {
   uint32_t frameIndex = 0;
   InstanceMotion motion;    // animation and edits (render/instance_motion.h)
   bool manyLights = false;  // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
+  // The exposure of each frame (render/exposure.h), and auto exposure's histogram: GPU-side, and
+  // its host-visible copy, read after the frame's fence.
+  ExposureControl exposure;
+  rhi::Buffer exposureHistogram, exposureReadback;
+  graph::ResourceState exposureHistogramState, exposureReadbackState;
   std::unique_ptr<PathTracer> pathTracer;  // created by the first path-traced render
 
   // State of one run (render() or a viewer session): what beginRun sets up and each frame advances.
@@ -75,6 +87,10 @@ struct Renderer::Impl {
     RenderOutput out;
     uint32_t frame = 0;
     bool animated = false, movedBefore = false;
+    // Auto exposure follows the frames (a viewer, a camera path, an animation, moved instances);
+    // a headless still keeps the exposure its metering frames found.
+    bool adaptExposure = false;
+    float meterDistance = 0.0f;  // the last metering frame's reading from its own exposure (EV)
     glm::mat4 prevClipFromWorld{1.0f};
     scene::Camera prevCamera;
     rhi::Buffer ldrReadback, hdrReadback;
@@ -138,6 +154,8 @@ struct Renderer::Impl {
   RenderOutput::SceneStats sceneStats() const;
   // The reference (render/path_tracer.h): the scene's rest pose seen from the (static) camera.
   Result<RenderOutput> renderPathTraced(const RenderSettings& s);
+  // Auto exposure's start: the guess from the scene's lights (render/exposure.h estimateEv100).
+  void beginExposure(const RenderSettings& s, const scene::Camera& cam);
   Status beginRun(const RenderSettings& s);
   Result<RenderOutput> render(const RenderSettings& s);
 

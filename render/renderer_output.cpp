@@ -216,7 +216,9 @@ void Renderer::Impl::readImages(RenderOutput& out) {
   out.hdr = ImageF::make(int(s.width), int(s.height));
   const uint16_t* halves = static_cast<const uint16_t*>(hdrReadback.mapped());
   for (size_t i = 0; i < pixels * 4; ++i) out.hdr.rgba[i] = halfToFloat(halves[i]);
-  const float exposure = std::exp2(s.exposureEv);
+  const float exposure = this->exposure.exposure();  // of the frame read back
+  out.exposure = exposure;
+  out.ev100 = ev100FromExposure(exposure);
   unexpose(out.hdr, exposure);
   for (auto& [name, format, width, height, layer, buffer, radiance] : aovReadback) {
     // One texel (a neutral image) is the same everywhere: broadcast to the frame. Other images come

@@ -90,8 +90,65 @@ std::vector<Setting> makeTable() {
                      &RenderSettings::mode, {"hybrid", "pathtrace", "raster"}, renderView));
   t.push_back(choice("primary", "Render", "G-buffer producer: raster, rt (traced primary rays) or auto (the faster)",
                      &RenderSettings::primary, {"raster", "rt", "auto"}, renderView));
-  t.push_back(number("exposure", SettingKind::Real, "Render", "Exposure in EV stops", &RenderSettings::exposureEv,
-                     -40.0, 40.0));
+  {
+    // A Real with a named value: "auto" (the default), or a fixed multiplier 2^EV.
+    Setting s{"exposure",
+              SettingKind::Real,
+              "auto (metered from each frame's luminance histogram, adapted over time) or a fixed exposure in EV "
+              "stops: light x 2^EV",
+              {"auto"},
+              -40.0,
+              40.0,
+              "Render",
+              kUseAll,
+              true};
+    s.get = [](const RenderSettings& r) {
+      return r.exposureMode == ExposureMode::Ev ? realText(r.exposureEv) : std::string("auto");
+    };
+    s.set = [s](RenderSettings& r, std::string_view text) -> Status {
+      if (text == "auto") {
+        if (r.exposureMode == ExposureMode::Ev) r.exposureMode = ExposureMode::Auto;
+        return okStatus();
+      }
+      double v = 0;
+      if (Status n = parseNumber(s, text, v); !n) return n;
+      r.exposureMode = ExposureMode::Ev;
+      r.exposureEv = float(v);
+      return okStatus();
+    };
+    t.push_back(std::move(s));
+  }
+  {
+    Setting s{"ev100",
+              SettingKind::Real,
+              "A fixed photographic exposure: EV at ISO 100 (a camera's EV100: 15 for a sunny day, 7 indoors), "
+              "light x 1/(1.2 x 2^EV100); off: --exposure decides",
+              {"off"},
+              -20.0,
+              40.0,
+              "Render",
+              kUseAll,
+              true};
+    s.excludes = "exposure";
+    s.get = [](const RenderSettings& r) {
+      return r.exposureMode == ExposureMode::Ev100 ? realText(r.ev100) : std::string("off");
+    };
+    s.set = [s](RenderSettings& r, std::string_view text) -> Status {
+      if (text == "off") {
+        if (r.exposureMode == ExposureMode::Ev100) r.exposureMode = ExposureMode::Auto;
+        return okStatus();
+      }
+      double v = 0;
+      if (Status n = parseNumber(s, text, v); !n) return n;
+      r.exposureMode = ExposureMode::Ev100;
+      r.ev100 = float(v);
+      return okStatus();
+    };
+    t.push_back(std::move(s));
+  }
+  t.push_back(number("exposure-compensation", SettingKind::Real, "Render",
+                     "EV stops added to the automatic exposure (positive: brighter)",
+                     &RenderSettings::exposureCompensation, -20.0, 20.0, kUseAll, /*restarts*/ false));
   t.push_back(choice("tonemap", "Render", "Tonemap operator: aces (fitted ACES) or neutral (Khronos PBR Neutral)",
                      &RenderSettings::tonemap, {"aces", "neutral"}, kUseAll, /*restarts*/ false));
   t.push_back(onOff("taa", "Render",
@@ -181,8 +238,11 @@ std::string Setting::typeText() const {
     }
     case SettingKind::Integer:
       return fmt::format("{}..{}", int64_t(min), int64_t(max));
-    case SettingKind::Real:
-      return realText(min) + ".." + (max >= 1e9 ? std::string("") : realText(max));
+    case SettingKind::Real: {
+      std::string t;
+      for (const std::string& c : choices) t += c + "|";  // named values ("auto")
+      return t + realText(min) + ".." + (max >= 1e9 ? std::string("") : realText(max));
+    }
   }
   return "";
 }

@@ -28,12 +28,14 @@ struct Setting {
   std::string name;  // "ao": the option --ao, the JSON key, the panel's label
   SettingKind kind = SettingKind::Switch;
   std::string help;                  // for --help and the panel's tooltip
-  std::vector<std::string> choices;  // Switch: {"on", "off"}; Choice: its names
+  std::vector<std::string> choices;  // Switch: {"on", "off"}; Choice: its names; Real: named values ("auto")
   double min = 0.0, max = 0.0;       // Integer and Real: the accepted range
   std::string group;                 // the panel's section: "Render" or "Effects"
   uint32_t uses = kUseAll;
   // Changing it restarts accumulation: the viewer starts a new run (histories, frame count).
   bool restarts = true;
+  // A setting that may not be given together with this one (both fix the same thing).
+  std::string excludes;
   // The value as text ("on", "quarter", "0.5"), and setting it from text (already range-checked or
   // not: set() checks and fails with a one-line cause).
   std::function<std::string(const RenderSettings&)> get;

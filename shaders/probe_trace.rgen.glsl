@@ -77,7 +77,7 @@ void main() {
       bsdf.diffuse *= 1.0 - gb.material.b;
       vec3 radiance = gb.emissive.rgb + directFromOneLight(bsdf, sp.position, hn, hng, -dir, rng);
       if ((grid.flags & kProbeHistoryValid) != 0u)
-        radiance += bsdf.diffuse / kPi * probeIrradiance(grid, sp.position, hn, -dir) * gb.albedo.a;
+        radiance += bsdf.diffuse / kPi * probeIrradiance(grid, sp.position, hn, -dir) * gb.albedo.a * grid.historyScale;
       result = vec4(min(radiance, vec3(256.0)), backFace ? -0.2 * payload.t : payload.t);
     }
   }

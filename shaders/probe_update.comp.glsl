@@ -61,6 +61,12 @@ void main() {
   value.rgb *= kPi;
 #endif
   ivec2 at = probeTileOrigin(grid, probe, TEXELS) + texel;
-  if ((grid.flags & kProbeHistoryValid) != 0u) value = mix(value, texelFetch(previousAtlas, at, 0), grid.hysteresis);
+  if ((grid.flags & kProbeHistoryValid) != 0u) {
+    vec4 previous = texelFetch(previousAtlas, at, 0);
+#ifndef PROBE_VISIBILITY
+    previous.rgb *= grid.historyScale;  // exposed with last frame's exposure
+#endif
+    value = mix(value, previous, grid.hysteresis);
+  }
   imageStore(outAtlas, at, vec4(value.rgb, 1.0));
 }

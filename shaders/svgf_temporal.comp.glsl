@@ -53,6 +53,9 @@ void main() {
     }
     c /= r.sum;
     m /= r.sum;
+    // Written at last frame's exposure: the mean scales by the ratio, the second moment by its square.
+    c.rgb *= pc.historyScale;
+    m *= vec2(pc.historyScale, pc.historyScale * pc.historyScale);
     n = min(c.a + 1.0, moving ? kSvgfMaxLengthMoving : kSvgfMaxLengthStatic);
     float alpha = max(1.0 / n, moving ? kSvgfAlphaMinMoving : 0.0);
     color = mix(c.rgb, fresh, alpha);

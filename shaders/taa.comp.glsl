@@ -55,7 +55,8 @@ vec3 sampleHistory(vec2 uv) {
   c += textureLod(historyTex, vec2(t0.x, t3.y), 0.0).rgb * w0.x * w3.y;
   c += textureLod(historyTex, vec2(t12.x, t3.y), 0.0).rgb * w12.x * w3.y;
   c += textureLod(historyTex, vec2(t3.x, t3.y), 0.0).rgb * w3.x * w3.y;
-  return max(c, vec3(0.0));  // the negative lobes can undershoot
+  // The negative lobes can undershoot; the history was exposed with last frame's exposure.
+  return max(c, vec3(0.0)) * frame.exposureRatio;
 }
 
 // Moves h towards the box centre until it lies inside centre ± extent.

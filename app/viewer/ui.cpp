@@ -130,8 +130,17 @@ void settingWidgets(const char* group, render::RenderSettings& s) {
         break;
       }
       case render::SettingKind::Real: {
+        // A named value ("auto", "off") is a checkbox that, unticked, gives the number a slider.
         // Unbounded ranges get a slider over a sensible span; the command line takes any value.
         const float lo = float(std::max(setting.min, -20.0)), hi = float(std::min(setting.max, 20.0));
+        const bool named = std::find(setting.choices.begin(), setting.choices.end(), value) != setting.choices.end();
+        if (!setting.choices.empty()) {
+          const std::string& name = setting.choices.front();
+          bool isNamed = named;
+          if (ImGui::Checkbox((setting.name + " " + name).c_str(), &isNamed))
+            next = isNamed ? name : std::to_string(std::clamp(0.0f, lo, hi));
+          if (named) break;
+        }
         float v = std::stof(value);
         if (ImGui::SliderFloat(label, &v, lo, hi, "%.2f")) next = std::to_string(v);
         break;

@@ -64,6 +64,8 @@ struct DenoiseInputs {
 struct TemporalState {
   bool moving = false;  // camera or objects moved: αmin 0.2, clamping, capped history (docs/techniques.md §11, §14)
   bool reset = false;   // first frame of a run or a camera cut: every history is dropped
+  // Radiance histories: this frame's exposure over the one they were written at (render/exposure.h).
+  float historyScale = 1.0f;
 };
 
 struct SurfacePair {

@@ -27,7 +27,8 @@ ShadowDenoised shadowTemporal(graph::RenderGraph& graph, const DenoiseInputs& in
         b.bind("outHistory", history.next).bind("outVariance", variance);
       },
       [size = in.size, lights, state](graph::PassContext& pc) {
-        pc.push(gpu::TemporalPush{{size.width, size.height}, lights, temporalFlags(state)});
+        pc.push(gpu::TemporalPush{
+            {size.width, size.height}, lights, temporalFlags(state), 1.0f, 0u});  // visibility: no units
         vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
       });
   return {history.next, variance, {}};

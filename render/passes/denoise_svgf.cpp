@@ -41,7 +41,8 @@ graph::ImageHandle svgfTemporal(graph::RenderGraph& graph, const DenoiseInputs& 
         b.bind("outColor", color.next).bind("outMoments", moments.next).bind("outColorVariance", out);
       },
       [size = in.size, state](graph::PassContext& pc) {
-        dispatch(pc, size, gpu::TemporalPush{{size.width, size.height}, 1, temporalFlags(state)});
+        dispatch(pc, size,
+                 gpu::TemporalPush{{size.width, size.height}, 1, temporalFlags(state), state.historyScale, 0u});
       });
   return out;
 }

@@ -81,7 +81,7 @@ rhi::ImageDesc atlasDesc(const gpu::ProbeGrid& g, uint32_t interior, VkFormat fo
 }  // namespace
 
 graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                        uint32_t frameIndex, uint32_t seed, ProbeLookup& lookup) {
+                                        uint32_t frameIndex, uint32_t seed, float historyScale, ProbeLookup& lookup) {
   gpu::ProbeGrid grid = fitGrid(in.scene.bounds);
   const uint32_t probes = grid.counts.x * grid.counts.y * grid.counts.z;
   const auto irradiance =
@@ -95,6 +95,7 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
   // A running mean while the history is short, then an exponential one (a cut restarts it).
   grid.hysteresis = std::min(kMaxHysteresis, float(frames) / float(frames + 1));
   grid.rotation = frameRotation(frameIndex, seed);
+  grid.historyScale = historyScale;
 
   const graph::ImageHandle rays = graph.createImage(
       "gi-probe-rays", {VK_FORMAT_R16G16B16A16_SFLOAT, grid.raysPerProbe, probes, 1, kUsage}, kRadianceImage);

@@ -172,4 +172,11 @@ graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, gra
 // Copies an image into a host-visible buffer and makes it visible to the host.
 void readback(graph::RenderGraph& graph, graph::ImageHandle image, graph::BufferHandle buffer);
 
+// Auto exposure's meter (render/passes/exposure.cpp): the luminance histograms of `hdr` (rendered at
+// pre-exposure `exposure`) into `histogram` (shared/exposure.h: surfaces, normalised by the
+// G-buffer's albedo, and background; cleared first), copied into the host-visible `readback` for the
+// host's ExposureControl (render/exposure.h).
+void meterExposure(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle hdr, const GBuffer& gb,
+                   float exposure, graph::BufferHandle histogram, graph::BufferHandle readback);
+
 }  // namespace rayster::render

@@ -49,7 +49,7 @@ graph::ImageHandle traceTwin(graph::RenderGraph& graph, const FrameInputs& in, c
                              const char* raygen, bool quarterLaunch = false) {
   graph::ImageHandle out = graph.createImage(
       image, {kVisibilityFormat, in.size.width, in.size.height, 1, kScratchUsage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
-      std::string_view(image) == "raw-ao" ? 0u : kRadianceImage);
+      0u);  // hit counts and fractions, not light: never divided by the exposure
   const rhi::RayTracingPipeline& pipe = twinPipeline(in.pipelines, raygen);
   const VkExtent2D launch = indirectLaunchSize(in.size, quarterLaunch);
   graph.addPass(

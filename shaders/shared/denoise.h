@@ -74,8 +74,10 @@ struct SurfacePush {
 
 struct TemporalPush {
   uvec2 size;
-  uint layers;  // shadow: visibility layers (lights); SVGF: unused
-  uint flags;   // kDenoise* bits
+  uint layers;         // shadow: visibility layers (lights); SVGF: unused
+  uint flags;          // kDenoise* bits
+  float historyScale;  // SVGF: the exposure ratio (FrameConstants::exposureRatio) the radiance history is read × by
+  uint pad;
 };
 
 struct AtrousPush {
@@ -90,7 +92,7 @@ struct AtrousPush {
 
 #ifdef __cplusplus
 static_assert(sizeof(SurfacePush) == 16);
-static_assert(sizeof(TemporalPush) == 16);
+static_assert(sizeof(TemporalPush) == 24);
 static_assert(sizeof(AtrousPush) == 32);
 static_assert(kSigmaNormal == float(1 << kSigmaNormalLog2), "the à-trous normal weight squares kSigmaNormalLog2 times");
 }  // namespace rayster::gpu

@@ -26,19 +26,20 @@ RAYSTER_CONST float kProbeMaxOffset = 0.45;         // of the spacing per axis: 
 struct ProbeGrid {
   vec3 origin;  // world position of probe (0, 0, 0)
   uint raysPerProbe;
-  vec3 spacing;       // between neighbouring probes, per axis
-  uint tilesPerRow;   // atlas columns (both atlases): probe i's tile is (i % tilesPerRow, i / tilesPerRow)
-  uvec3 counts;       // probes per axis (≥ 2 each); probe index = x + counts.x·(y + counts.y·z)
-  uint flags;         // kProbe*
-  vec4 rotation;      // this frame's random rotation of the ray directions (unit quaternion)
-  float hysteresis;   // weight of the previous atlas in the blend (0: this frame only)
-  float normalBias;   // lookup point offset along the normal, × the smallest spacing
-  float viewBias;     // and towards the viewer
-  float maxDistance;  // what a ray that misses records as its distance
+  vec3 spacing;        // between neighbouring probes, per axis
+  uint tilesPerRow;    // atlas columns (both atlases): probe i's tile is (i % tilesPerRow, i / tilesPerRow)
+  uvec3 counts;        // probes per axis (≥ 2 each); probe index = x + counts.x·(y + counts.y·z)
+  uint flags;          // kProbe*
+  vec4 rotation;       // this frame's random rotation of the ray directions (unit quaternion)
+  float hysteresis;    // weight of the previous atlas in the blend (0: this frame only)
+  float normalBias;    // lookup point offset along the normal, × the smallest spacing
+  float viewBias;      // and towards the viewer
+  float maxDistance;   // what a ray that misses records as its distance
+  float historyScale;  // the exposure ratio (FrameConstants::exposureRatio) the previous irradiance atlas is read × by
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(ProbeGrid) == 80);
+static_assert(sizeof(ProbeGrid) == 84);
 }  // namespace rayster::gpu
 #endif
 

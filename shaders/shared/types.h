@@ -199,7 +199,7 @@ struct FrameConstants {
   uint seed;        // --seed
   uint lightCount;
   uint shadowLightCount;  // lights with a visibility layer (<= kMaxShadowLights)
-  float exposure;         // linear multiplier, 2^EV
+  float exposure;         // linear multiplier applied to every light source (render/exposure.h)
   uint environmentKind;
   vec4 environment;  // rgb: intensity × (1,1,1) scale; w: rotation about +Y (radians)
   vec3 skyZenith;
@@ -236,7 +236,9 @@ struct FrameConstants {
   // Layer of the AO image that rt-ao writes and lighting reads: shadowLightCount when AO is on in
   // the hybrid (AO is the shadow denoiser's last layer, renderer_frame.cpp), else 0 (its own image).
   uint aoLayer;
-  uint pad3;
+  // This frame's exposure over the previous frame's (1 after a cut): radiance that histories of the
+  // previous frame hold was pre-exposed with the old exposure and is multiplied by this when read.
+  float exposureRatio;
 };
 
 // GPU culling (render/passes/cull.cpp, docs/techniques.md §23): one row per GpuScene::Draw, in order.

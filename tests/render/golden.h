@@ -1,5 +1,7 @@
 #pragma once
-// Golden-image comparison shared by the render tests.
+// Golden-image comparison shared by the render tests. Every golden is rendered at the unit exposure
+// (--exposure 0), what the built-in scenes were tuned at: the goldens hold the pipeline still, and
+// automatic exposure has tests of its own (tests/render/test_exposure.cpp).
 #include <cstdlib>
 #include <filesystem>
 #include <string>

@@ -61,6 +61,9 @@ render::RenderSettings rasterSettings(bool culling) {
   s.mode = render::Mode::Raster;
   s.culling = culling;
   s.taa = true;  // jittered primaries: the cull must use the very matrix rasterised
+  // A fixed exposure: auto exposure carries its metered value from one run into the next, and the
+  // runs compared here must differ in culling alone.
+  s.exposureMode = render::ExposureMode::Ev;
   return s;
 }
 

@@ -20,7 +20,7 @@ const char* const kStages[] = {"shadow-denoised", "reflection-denoised", "ao-den
 void renderStages(const std::filesystem::path& dir, const std::string& scene) {
   std::string aovs;
   for (const char* s : kStages) aovs += std::string(aovs.empty() ? "" : ",") + s;
-  renderOk(dir, scene, "builtin:" + scene + " --primary raster --frames 8 --seed 1 --aov " + aovs, kW, kH);
+  renderOk(dir, scene, "builtin:" + scene + " --primary raster --frames 8 --seed 1 --exposure 0 --aov " + aovs, kW, kH);
 }
 
 // The stages of a render in `rendered` against their goldens; failures write into `dir`.

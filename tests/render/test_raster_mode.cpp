@@ -267,14 +267,16 @@ TEST(RasterMode, SsrReflectsOnMirrorFloor) {
 
 TEST(RasterMode, GoldenCornell) {
   auto dir = testDir();
-  Image8 img = renderOk(dir, "raster_cornell", "builtin:cornell --mode raster --frames 4 --seed 3", 160, 120);
+  Image8 img =
+      renderOk(dir, "raster_cornell", "builtin:cornell --mode raster --frames 4 --seed 3 --exposure 0", 160, 120);
   ASSERT_FALSE(img.rgba.empty());
   expectMatchesGolden(img, "raster_cornell", dir);
 }
 
 TEST(RasterMode, GoldenWhitted) {
   auto dir = testDir();
-  Image8 img = renderOk(dir, "raster_whitted", "builtin:whitted --mode raster --frames 4 --seed 3", 160, 120);
+  Image8 img =
+      renderOk(dir, "raster_whitted", "builtin:whitted --mode raster --frames 4 --seed 3 --exposure 0", 160, 120);
   ASSERT_FALSE(img.rgba.empty());
   expectMatchesGolden(img, "raster_whitted", dir);
 }

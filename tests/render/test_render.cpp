@@ -18,7 +18,7 @@ constexpr int kW = 160, kH = 120;
 
 TEST(Render, CornellMatchesGolden) {
   auto dir = testDir();
-  Image8 img = renderOk(dir, "cornell", "builtin:cornell --primary raster --frames 16 --seed 1", kW, kH);
+  Image8 img = renderOk(dir, "cornell", "builtin:cornell --primary raster --frames 16 --seed 1 --exposure 0", kW, kH);
   expectMatchesGolden(img, "cornell-160x120", dir);
 }
 

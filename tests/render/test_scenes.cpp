@@ -17,7 +17,8 @@ const std::filesystem::path kAssimpGltf2 = "/usr/share/assimp/models/glTF2";
 
 Image8 renderScene(const std::filesystem::path& dir, const std::string& name, const std::string& scene,
                    const std::string& extra = "") {
-  return renderOk(dir, name, scene + " --primary raster --frames 8 --seed 1 " + extra, kW, kH);
+  // The goldens were made at the unit exposure (auto exposure has tests of its own: test_exposure.cpp).
+  return renderOk(dir, name, scene + " --primary raster --frames 8 --seed 1 --exposure 0 " + extra, kW, kH);
 }
 
 // builtin:whitted's golden: WhittedRun.FrameMatchesGolden (tests/render/test_effect_goldens.cpp),

@@ -79,7 +79,8 @@ TEST(SettingsTable, JsonHasEveryEntryWithItsType) {
   EXPECT_EQ(j.at("ao"), false);
   EXPECT_EQ(j.at("tonemap"), "aces");
   EXPECT_TRUE(j.at("shadow-lights").is_number_integer());
-  EXPECT_TRUE(j.at("exposure").is_number());
+  EXPECT_EQ(j.at("exposure"), "auto");  // a named value of a number setting
+  EXPECT_EQ(j.at("ev100"), "off");
 }
 
 // Each command's --help lists the table's entries it takes, with their defaults; a bad value is a
