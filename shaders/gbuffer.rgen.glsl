@@ -11,6 +11,7 @@
 #include "lib/primary_payload.glsl"
 #include "lib/hit_surface.glsl"
 #include "lib/motion.glsl"
+#include "lib/ray_cone.glsl"
 #endif
 
 // Traced primary rays (--primary rt): writes the same G-buffer as the raster pass. Depth goes to
@@ -78,6 +79,7 @@ void main() {
   SurfacePoint sp;
   MaterialRecord m;
   surfaceAtHit(payload, origin, dir, sp, m);
+  setRayCone(pixelSpreadAngle() * payload.t, sp.geometricNormal, dir);  // the mip the rasteriser picks
   GBufferValues gb = evaluateSurface(m, sp, origin);
 
   vec4 clip = frame.clipFromWorld * vec4(sp.position, 1.0);

@@ -18,6 +18,7 @@
 #include "lib/primary_payload.glsl"
 #include "lib/hit_surface.glsl"
 #include "lib/environment.glsl"
+#include "lib/ray_cone.glsl"
 #endif
 
 // Ray-traced reflections and refractions (docs/techniques.md §12, §13): from every G-buffer pixel whose
@@ -140,6 +141,10 @@ void main() {
     return;
   }
   vec3 radiance = vec3(0.0);
+  // The pixel's ray cone: as wide at the G-buffer surface as the camera ray made it, then widening
+  // by the same angle along every bounce (flat mirrors).
+  const float spread = pixelSpreadAngle();
+  float coneWidth = spread * distance(frame.cameraPosition.xyz, origin);
   for (uint bounce = 1u; bounce <= min(frame.maxSpecularBounces, kMaxSpecularBounces); ++bounce) {
     payload.t = -1.0;
     traceRayEXT(tlas, rayFlags(), kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
@@ -154,6 +159,8 @@ void main() {
     bool thinHit = m.thickness <= 0.0;
     // Beer–Lambert: leaving a volume, the path inside it was payload.t long.
     if (!entering && !thinHit) beta *= volumeTransmittance(m, payload.t);
+    coneWidth += spread * payload.t;
+    setRayCone(coneWidth, sp.geometricNormal, dir);
     GBufferValues gb = evaluateSurface(m, sp, origin);
     ShadingInput s;
     s.p = sp.position;

@@ -3,6 +3,10 @@
 #ifndef RAYSTER_HIT_SURFACE_GLSL
 #define RAYSTER_HIT_SURFACE_GLSL
 
+// 0.5·log2(uv area / world area) of the surface surfaceAtHit found last (the texel density ray
+// cones need: lib/ray_cone.glsl); very negative where the surface has no texture coordinates.
+float gHitUvDensity = -1e4;
+
 // sp.geometricNormal keeps the triangle's front side (outward for closed meshes), unflipped.
 void surfaceAtHit(PrimaryPayload payload, vec3 origin, vec3 dir, out SurfacePoint sp, out MaterialRecord m) {
   InstanceRecord inst = Instances(frame.instances).i[payload.instance];
@@ -22,6 +26,9 @@ void surfaceAtHit(PrimaryPayload payload, vec3 origin, vec3 dir, out SurfacePoin
     sp.uv0 = tex;
     sp.uv1 = tex;
     sp.color = vec4(1.0);
+    // The equirectangular UVs' unit square covers the sphere's 4πr² (evenly enough for a LOD).
+    float r = s.radius * length(inst.worldFromObject[0].xyz);
+    gHitUvDensity = r > 0.0 ? -0.5 * log2(4.0 * kPi * r * r) : -1e4;
   } else {
     m = Materials(frame.materials).m[g.material];
     Indices idx = Indices(g.indexAddress);
@@ -40,6 +47,9 @@ void surfaceAtHit(PrimaryPayload payload, vec3 origin, vec3 dir, out SurfacePoin
     sp.uv0 = v0.uv0 * w.x + v1.uv0 * w.y + v2.uv0 * w.z;
     sp.uv1 = v0.uv1 * w.x + v1.uv1 * w.y + v2.uv1 * w.z;
     sp.color = vertexColor(g, payload.primitive, w);
+    vec2 du = v1.uv0 - v0.uv0, dv = v2.uv0 - v0.uv0;
+    float uvArea = abs(du.x * dv.y - du.y * dv.x), worldArea = length(cross(p1 - p0, p2 - p0));
+    gHitUvDensity = uvArea > 0.0 && worldArea > 0.0 ? 0.5 * log2(uvArea / worldArea) : -1e4;
   }
 }
 

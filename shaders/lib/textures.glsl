@@ -1,13 +1,26 @@
 // The bindless texture array (set 1) and material texture lookups with KHR_texture_transform.
-// The includer defines RAYSTER_SAMPLE(slot, uv): implicit LOD in fragment shaders; LOD 0 where no
-// derivatives exist (ray tracing), so traced surfaces use the finest mip.
+// The includer defines RAYSTER_SAMPLE(slot, uv): implicit LOD in fragment shaders. Ray tracing has
+// no derivatives: there the LOD comes from the ray cone of the hit being shaded (gConeLod, set by
+// lib/ray_cone.glsl's setRayCone), plus half the log2 of the texture's texel count; shaders that set
+// no cone (the path tracer, diffuse bounces, any-hit alpha tests) sample the finest mip.
 #ifndef RAYSTER_TEXTURES_GLSL
 #define RAYSTER_TEXTURES_GLSL
 
 layout(set = 1, binding = 0) uniform sampler2D textures[];
 
 #ifndef RAYSTER_SAMPLE
-#define RAYSTER_SAMPLE(slot, uv) textureLod(textures[nonuniformEXT(slot)], uv, 0.0)
+// log2(cone width / |cos|) + 0.5·log2(uv area / world area) of the hit's triangle (Akenine-Möller et
+// al., "Texture Level of Detail Strategies for Real-Time Ray Tracing", Ray Tracing Gems ch. 20).
+float gConeLod = -1e4;
+// `scale`: KHR_texture_transform's, which multiplies the texel density like the texture's size.
+float coneLod(uint slot, vec2 scale) {
+  ivec2 size = textureSize(textures[nonuniformEXT(slot)], 0);
+  return max(0.0, gConeLod + 0.5 * log2(float(size.x) * float(size.y) * max(abs(scale.x * scale.y), 1e-20)));
+}
+#define RAYSTER_SAMPLE_SCALED(slot, uv, scale) textureLod(textures[nonuniformEXT(slot)], uv, coneLod(slot, scale))
+#define RAYSTER_SAMPLE(slot, uv) RAYSTER_SAMPLE_SCALED(slot, uv, vec2(1.0))
+#else
+#define RAYSTER_SAMPLE_SCALED(slot, uv, scale) RAYSTER_SAMPLE(slot, uv)
 #endif
 
 vec2 transformUv(TextureSlot t, vec2 uv0, vec2 uv1) {
@@ -19,6 +32,6 @@ vec2 transformUv(TextureSlot t, vec2 uv0, vec2 uv1) {
 }
 
 #define SAMPLE_SLOT(t, uv0, uv1, fallback) \
-  ((t).slot == kNoTexture ? (fallback) : RAYSTER_SAMPLE((t).slot, transformUv((t), (uv0), (uv1))))
+  ((t).slot == kNoTexture ? (fallback) : RAYSTER_SAMPLE_SCALED((t).slot, transformUv((t), (uv0), (uv1)), (t).scale))
 
 #endif
