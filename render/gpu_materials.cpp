@@ -14,6 +14,7 @@
 // leaves rays other than the camera's to the renderer, since it means unlit for baked or stylised
 // colour.)
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "render/gpu_scene.h"
@@ -86,6 +87,11 @@ void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs)
       it = slots.emplace(key, slot).first;
     }
     t.slot = it->second;
+    // Ray cones' texel density of this texture (lib/textures.glsl coneLod), once here rather than a
+    // textureSize and a log2 per sample.
+    const rhi::Image& img = gs.textures[scene.textures[size_t(ref.texture)].image];
+    const double texels = double(img.desc().width) * double(img.desc().height);
+    t.lodBias = float(0.5 * std::log2(texels * std::max(std::abs(double(ref.scale.x) * ref.scale.y), 1e-20)));
     return t;
   };
 

@@ -12,15 +12,13 @@ layout(set = 1, binding = 0) uniform sampler2D textures[];
 // log2(cone width / |cos|) + 0.5·log2(uv area / world area) of the hit's triangle (Akenine-Möller et
 // al., "Texture Level of Detail Strategies for Real-Time Ray Tracing", Ray Tracing Gems ch. 20).
 float gConeLod = -1e4;
-// `scale`: KHR_texture_transform's, which multiplies the texel density like the texture's size.
-float coneLod(uint slot, vec2 scale) {
-  ivec2 size = textureSize(textures[nonuniformEXT(slot)], 0);
-  return max(0.0, gConeLod + 0.5 * log2(float(size.x) * float(size.y) * max(abs(scale.x * scale.y), 1e-20)));
-}
-#define RAYSTER_SAMPLE_SCALED(slot, uv, scale) textureLod(textures[nonuniformEXT(slot)], uv, coneLod(slot, scale))
-#define RAYSTER_SAMPLE(slot, uv) RAYSTER_SAMPLE_SCALED(slot, uv, vec2(1.0))
+// `lodBias`: TextureSlot::lodBias, the texture's 0.5·log2(texels × |KHR_texture_transform scale|).
+float coneLod(float lodBias) { return max(0.0, gConeLod + lodBias); }
+#define RAYSTER_SAMPLE_BIASED(slot, uv, lodBias) textureLod(textures[nonuniformEXT(slot)], uv, coneLod(lodBias))
+// A texture without a TextureSlot (none today): no density known, mip 0.
+#define RAYSTER_SAMPLE(slot, uv) textureLod(textures[nonuniformEXT(slot)], uv, 0.0)
 #else
-#define RAYSTER_SAMPLE_SCALED(slot, uv, scale) RAYSTER_SAMPLE(slot, uv)
+#define RAYSTER_SAMPLE_BIASED(slot, uv, lodBias) RAYSTER_SAMPLE(slot, uv)
 #endif
 
 vec2 transformUv(TextureSlot t, vec2 uv0, vec2 uv1) {
@@ -32,6 +30,6 @@ vec2 transformUv(TextureSlot t, vec2 uv0, vec2 uv1) {
 }
 
 #define SAMPLE_SLOT(t, uv0, uv1, fallback) \
-  ((t).slot == kNoTexture ? (fallback) : RAYSTER_SAMPLE_SCALED((t).slot, transformUv((t), (uv0), (uv1)), (t).scale))
+  ((t).slot == kNoTexture ? (fallback) : RAYSTER_SAMPLE_BIASED((t).slot, transformUv((t), (uv0), (uv1)), (t).lodBias))
 
 #endif

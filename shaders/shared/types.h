@@ -104,7 +104,7 @@ struct TextureSlot {
   uint slot;
   uint texCoord;
   float rotation;
-  float pad0;
+  float lodBias;  // ray cones (lib/textures.glsl): 0.5·log2(texels × |scale.x·scale.y|) of the texture
   vec2 offset;
   vec2 scale;
 };
