@@ -78,6 +78,9 @@ struct MeshBuilder {
 };
 Result<Mesh> convertMesh(MeshBuilder& builder, int meshIndex);
 
+// ---- gltf_validate.cpp: what the specification forbids and tinygltf accepts ----
+Status validateModel(const tinygltf::Model& model, const std::string& file);
+
 // ---- gltf_materials.cpp: images, samplers, textures and materials, in glTF order ----
 
 Status convertMaterials(const tinygltf::Model& model, const std::string& file, const ImageDecodeState& images,

@@ -310,6 +310,7 @@ Result<Scene> loadGltf(const fs::path& path) {
   gltf::ImageDecodeState images;
   Result<tinygltf::Model> model = gltf::parse(path, file, images);
   if (!model) return model.error();
+  RAYSTER_TRY(gltf::validateModel(*model, file));
   Scene scene;
   scene.name = path.stem().string();
   RAYSTER_TRY(gltf::convertMaterials(*model, file, images, scene));

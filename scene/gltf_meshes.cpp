@@ -115,13 +115,30 @@ std::string meshLabel(const tinygltf::Mesh& mesh, int index) {
   return mesh.name.empty() ? fmt::format("mesh {}", index) : fmt::format("mesh '{}'", mesh.name);
 }
 
+// A triangle strip's or fan's vertex order as a triangle list, with glTF 2.0's winding (§3.7.2.1):
+// strip triangle i is {v_i, v_{i+1+i%2}, v_{i+2-i%2}}, fan triangle i is {v_{i+1}, v_{i+2}, v_0}.
+std::vector<uint32_t> triangulate(const std::vector<uint32_t>& v, bool strip) {
+  std::vector<uint32_t> out;
+  if (v.size() < 3) return out;
+  out.reserve((v.size() - 2) * 3);
+  for (size_t i = 0; i + 2 < v.size(); ++i) {
+    if (strip)
+      out.insert(out.end(), {v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+    else
+      out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+  }
+  return out;
+}
+
 Result<Primitive> convertPrimitive(MeshBuilder& builder, const tinygltf::Mesh& mesh, int meshIndex, size_t primIndex) {
   const tinygltf::Primitive& src = mesh.primitives[primIndex];
   const std::string& file = builder.file;
   const tinygltf::Model& model = builder.model;
   const std::string label = meshLabel(mesh, meshIndex);
   // tinygltf reports an absent mode as -1 in some versions and 4 in others; both mean triangles.
-  if (src.mode != TINYGLTF_MODE_TRIANGLES && src.mode != -1)
+  // Strips and fans become triangle lists (triangulate() below).
+  const bool strip = src.mode == TINYGLTF_MODE_TRIANGLE_STRIP, fan = src.mode == TINYGLTF_MODE_TRIANGLE_FAN;
+  if (src.mode != TINYGLTF_MODE_TRIANGLES && src.mode != -1 && !strip && !fan)
     return bad(file, "{} primitive {} uses mode {}, only triangles are supported", label, primIndex,
                modeName(src.mode));
   if (!src.targets.empty()) log::warn("{}: {} primitive {}: morph targets are ignored", file, label, primIndex);
@@ -184,6 +201,7 @@ Result<Primitive> convertPrimitive(MeshBuilder& builder, const tinygltf::Mesh& m
     prim.indices.resize(vertexCount);
     for (size_t i = 0; i < vertexCount; ++i) prim.indices[i] = uint32_t(i);
   }
+  if (strip || fan) prim.indices = triangulate(prim.indices, strip);
   if (prim.indices.size() % 3 != 0)
     return bad(file, "{} primitive {}: {} indices is not a whole number of triangles", label, primIndex,
                prim.indices.size());

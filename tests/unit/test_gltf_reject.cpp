@@ -1,5 +1,7 @@
 // glTF files the loader must refuse: each with ExitCode::BadInput and a one-line message that says
 // why. Built from the same test quad as test_gltf.cpp, broken one way each.
+#include <functional>
+
 #include <gtest/gtest.h>
 
 #include "gltf_test_util.h"
@@ -211,3 +213,108 @@ TEST(GltfReject, WrongAccessorTypes) {
 }
 
 }  // namespace
+
+// What glTF 2.0 forbids and tinygltf parses anyway (scene/gltf_validate.cpp): each refused with the
+// property named, where the loader used to draw something the file does not say.
+namespace {
+
+void expectSpecRefusal(const std::function<void(Doc&)>& edit, const std::string& substring) {
+  TempDir dir;
+  Doc d = quadDoc();
+  edit(d);
+  expectRefused(loadBytes(dir, d.gltf()), substring);
+}
+
+}  // namespace
+
+TEST(GltfSpec, AssetVersionMustBeTwo) {
+  expectSpecRefusal([](Doc& d) { d.j["asset"]["version"] = "3.0"; }, "asset.version '3.0'");
+  expectSpecRefusal([](Doc& d) { d.j["asset"]["version"] = "2"; }, "asset.version '2'");
+  expectSpecRefusal([](Doc& d) { d.j["asset"]["minVersion"] = "2.1"; }, "asset.minVersion '2.1'");
+  // 2.1 is a 2.x version a 2.0 loader may read (the spec's forward compatibility).
+  TempDir dir;
+  Doc d = quadDoc();
+  d.j["asset"]["version"] = "2.1";
+  EXPECT_TRUE(loadBytes(dir, d.gltf()).ok());
+}
+
+TEST(GltfSpec, NodeArraysHaveTheirSizes) {
+  expectSpecRefusal([](Doc& d) { d.node(0)["matrix"] = Json(std::vector<double>(15, 0.0)); },
+                    "nodes[0].matrix has 15 numbers");
+  expectSpecRefusal([](Doc& d) { d.node(0)["matrix"] = Json(std::vector<double>(17, 0.0)); },
+                    "nodes[0].matrix has 17 numbers");
+  expectSpecRefusal([](Doc& d) { d.node(0)["translation"] = {1, 2}; }, "nodes[0].translation has 2 numbers");
+}
+
+TEST(GltfSpec, TextureImageAndSamplerIndicesExist) {
+  auto textured = [](Doc& d, Json texture) {
+    d.j["images"] = Json::array({{{"uri", "missing.png"}}});
+    d.j["textures"] = Json::array({texture});
+    d.j["materials"] = Json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    primitive(d)["material"] = 0;
+  };
+  expectSpecRefusal([&](Doc& d) { textured(d, {{"source", 3}}); }, "textures[0].source 3 does not exist");
+  expectSpecRefusal(
+      [&](Doc& d) {
+        textured(d, {{"source", 0}, {"sampler", 1}});
+      },
+      "textures[0].sampler 1 does not exist");
+  expectSpecRefusal(
+      [&](Doc& d) {
+        textured(d, {{"source", 0}});
+        d.j["materials"][0]["normalTexture"] = {{"index", 5}};
+      },
+      "materials[0].normalTexture uses texture 5");
+}
+
+TEST(GltfSpec, SamplerEnumsAreTheSpecsOwn) {
+  auto sampler = [](Doc& d, Json s) {
+    d.j["images"] = Json::array({{{"uri", "missing.png"}}});
+    d.j["samplers"] = Json::array({s});
+    d.j["textures"] = Json::array({{{"source", 0}, {"sampler", 0}}});
+  };
+  expectSpecRefusal([&](Doc& d) { sampler(d, {{"magFilter", 9984}}); }, "samplers[0].magFilter 9984");
+  expectSpecRefusal([&](Doc& d) { sampler(d, {{"minFilter", 1234}}); }, "samplers[0].minFilter 1234");
+  expectSpecRefusal([&](Doc& d) { sampler(d, {{"wrapS", 10496}}); }, "samplers[0].wrapS 10496");
+  expectSpecRefusal([&](Doc& d) { sampler(d, {{"wrapT", 0}}); }, "samplers[0].wrapT 0");
+}
+
+TEST(GltfSpec, CamerasHaveAPositiveFieldOfViewAndNearPlane) {
+  auto camera = [](Doc& d, Json perspective) {
+    d.j["cameras"] = Json::array({{{"type", "perspective"}, {"perspective", perspective}}});
+    d.node(0)["camera"] = 0;
+  };
+  expectSpecRefusal([&](Doc& d) { camera(d, {{"yfov", 0.0}, {"znear", 0.1}}); }, "perspective.yfov 0");
+  expectSpecRefusal([&](Doc& d) { camera(d, {{"yfov", -0.5}, {"znear", 0.1}}); }, "perspective.yfov -0.5");
+  expectSpecRefusal([&](Doc& d) { camera(d, {{"yfov", 0.7}, {"znear", 0.0}}); }, "perspective.znear 0");
+  expectSpecRefusal(
+      [&](Doc& d) {
+        camera(d, {{"yfov", 0.7}, {"znear", 1.0}, {"zfar", 0.5}});
+      },
+      "perspective.zfar 0.5 is not beyond znear 1");
+  // No zfar is valid: an infinite projection.
+  TempDir dir;
+  Doc d = quadDoc();
+  camera(d, {{"yfov", 0.7}, {"znear", 0.1}});
+  EXPECT_TRUE(loadBytes(dir, d.gltf()).ok());
+}
+
+TEST(GltfSpec, LightsHaveNonNegativeIntensityAndOrderedCones) {
+  auto light = [](Doc& d, Json l) {
+    d.j["extensionsUsed"] = {"KHR_lights_punctual"};
+    d.j["extensions"]["KHR_lights_punctual"]["lights"] = Json::array({l});
+    d.node(0)["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
+  };
+  expectSpecRefusal([&](Doc& d) { light(d, {{"type", "point"}, {"intensity", -3.0}}); }, "negative intensity -3");
+  expectSpecRefusal(
+      [&](Doc& d) {
+        light(d, {{"type", "spot"}, {"spot", {{"innerConeAngle", 0.6}, {"outerConeAngle", 0.4}}}});
+      },
+      "spot.innerConeAngle 0.6 is not in [0, outerConeAngle 0.4)");
+  expectSpecRefusal(
+      [&](Doc& d) {
+        light(d, {{"type", "spot"}, {"spot", {{"outerConeAngle", 2.0}}}});
+      },
+      "spot.outerConeAngle 2 is not in (0, pi/2]");
+  expectSpecRefusal([&](Doc& d) { light(d, {{"type", "point"}, {"range", -1.0}}); }, "range -1");
+}

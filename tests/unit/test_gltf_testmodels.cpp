@@ -1,8 +1,10 @@
 // Every glTF in Debian's assimp-testmodels (real exporters' output plus deliberately broken files)
 // either loads or is refused cleanly: BadInput, one non-empty line. Never a crash or a hang.
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -77,3 +79,46 @@ TEST(GltfTestModels, BoxTexturedHasItsTexture) {
 }
 
 }  // namespace
+
+namespace {
+
+// What a primitive's triangles cover: their count and the sum of their (winding-signed) area
+// vectors, which is the quad's area times its facing whichever diagonal splits it.
+struct Coverage {
+  size_t triangles = 0;
+  glm::vec3 area{0.0f};
+};
+Coverage coverage(const scene::Scene& s) {
+  Coverage c;
+  for (const scene::Mesh& m : s.meshes)
+    for (const scene::Primitive& p : m.primitives)
+      for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+        const glm::vec3 a = p.positions[p.indices[t]], b = p.positions[p.indices[t + 1]],
+                        d = p.positions[p.indices[t + 2]];
+        c.area += 0.5f * glm::cross(b - a, d - a);
+        ++c.triangles;
+      }
+  return c;
+}
+
+}  // namespace
+
+TEST(GltfTestModels, TriangleStripsAndFansAreTheTrianglesTheyDescribe) {
+  // glTF-Asset-Generator's Mesh_PrimitiveMode: 04 strip, 05 fan, 11 indexed strip, 12 indexed fan,
+  // all the same quad as 06 (triangles) and 13 (indexed triangles), with the same winding.
+  const fs::path dir = "/usr/share/assimp/models/glTF2/glTF-Asset-Generator/Mesh_PrimitiveMode";
+  if (!fs::exists(dir)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  auto load = [&](const char* n) {
+    Result<scene::Scene> s = scene::loadGltf(dir / (std::string("Mesh_PrimitiveMode_") + n + ".gltf"));
+    EXPECT_TRUE(s.ok()) << n << ": " << (s.ok() ? "" : s.error().message);
+    return s.ok() ? coverage(*s) : Coverage{};
+  };
+  const Coverage quad = load("06");
+  ASSERT_EQ(quad.triangles, 2u);
+  ASSERT_GT(glm::length(quad.area), 0.5f);
+  for (const char* n : {"13", "04", "05", "11", "12"}) {
+    const Coverage c = load(n);
+    EXPECT_EQ(c.triangles, 2u) << n;
+    EXPECT_NEAR(glm::distance(c.area, quad.area), 0.0f, 1e-5f) << n << ": same area, same facing";
+  }
+}
