@@ -4,8 +4,10 @@
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -80,6 +82,30 @@ Status checkIndex(std::string_view field, const char* kind, int64_t soFar, int64
   return okStatus();
 }
 
+// Faces are triangulated (ear clipping, quadratic in the corners); a polygon of thousands of corners
+// is a broken or hostile file, not a model.
+constexpr size_t kMaxFaceVertices = 1024;
+
+// The numbers of a "v", "vt" or "vn" line must be finite: a NaN or an overflow poisons every
+// bounding box and acceleration structure built from it.
+Status checkFiniteNumbers(std::string_view rest, const std::string& where, std::string_view key) {
+  size_t pos = 0;
+  while (pos < rest.size()) {
+    while (pos < rest.size() && isSpace(rest[pos])) ++pos;
+    size_t end = pos;
+    while (end < rest.size() && !isSpace(rest[end])) ++end;
+    if (end == pos) break;
+    const std::string token(rest.substr(pos, end - pos));
+    pos = end;
+    char* stop = nullptr;
+    const double v = std::strtod(token.c_str(), &stop);
+    if (stop == token.c_str()) continue;  // not a number: tinyobjloader's parse decides
+    if (!std::isfinite(v) || std::abs(v) > double(std::numeric_limits<float>::max()))
+      return makeError(ExitCode::BadInput, "{}: {} coordinate '{}' is not a finite number", where, key, token);
+  }
+  return okStatus();
+}
+
 // Validates every face index before tinyobjloader sees the file, so errors name their line
 // (tinyobjloader names only some, and drops quads with bad indices with just a warning).
 Status checkFaceIndices(std::string_view text, const std::string& file) {
@@ -106,8 +132,13 @@ Status checkFaceIndices(std::string_view text, const std::string& file) {
       ++soFar.vt;
     else if (key == "vn")
       ++soFar.vn;
+    if (key == "v" || key == "vt" || key == "vn") {
+      status = checkFiniteNumbers(rest, fmt::format("{}:{}", file, lineNumber), key);
+      return;
+    }
     if (key != "f") return;
     const std::string where = fmt::format("{}:{}", file, lineNumber);
+    size_t corners = 0;
     size_t pos = 0;
     while (pos < rest.size() && status.ok()) {
       while (pos < rest.size() && isSpace(rest[pos])) ++pos;
@@ -116,6 +147,13 @@ Status checkFaceIndices(std::string_view text, const std::string& file) {
       if (end == pos) break;
       std::string_view corner = rest.substr(pos, end - pos);
       pos = end;
+      if (++corners > kMaxFaceVertices) {
+        status = makeError(ExitCode::BadInput,
+                           "{}: a face of more than {} vertices (Rayster triangulates faces of "
+                           "up to {})",
+                           where, kMaxFaceVertices, kMaxFaceVertices);
+        break;
+      }
       // v, v/vt, v//vn or v/vt/vn: an empty field means "not given".
       const char* kinds[3] = {"vertex", "texcoord", "normal"};
       const int64_t counts[3] = {soFar.v, soFar.vt, soFar.vn};

@@ -322,10 +322,41 @@ Status readCameraPath(const Reader& r, const json& keys, std::vector<CameraKey>&
   return okStatus();
 }
 
+// The position of the first byte that is not part of well-formed UTF-8 (RFC 3629: no overlong
+// forms, no surrogates, nothing past U+10FFFF), or npos.
+size_t firstInvalidUtf8(std::string_view t) {
+  size_t i = 0;
+  while (i < t.size()) {
+    const auto b = [&](size_t k) { return uint8_t(t[k]); };
+    const uint8_t c = b(i);
+    size_t n = c < 0x80                   ? 1
+               : (c >= 0xC2 && c <= 0xDF) ? 2
+               : (c >= 0xE0 && c <= 0xEF) ? 3
+               : (c >= 0xF0 && c <= 0xF4) ? 4
+                                          : 0;
+    if (n == 0 || i + n > t.size()) return i;
+    for (size_t k = 1; k < n; ++k)
+      if ((b(i + k) & 0xC0) != 0x80) return i;
+    if ((c == 0xE0 && b(i + 1) < 0xA0) || (c == 0xED && b(i + 1) > 0x9F) || (c == 0xF0 && b(i + 1) < 0x90) ||
+        (c == 0xF4 && b(i + 1) > 0x8F))
+      return i;
+    i += n;
+  }
+  return std::string_view::npos;
+}
+
 Result<json> parseJson(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return makeError(ExitCode::BadInput, "cannot read scene '{}': no such file", path.string());
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // JSON is UTF-8 (RFC 8259); say where it is not, without echoing the bytes.
+  if (const size_t bad = firstInvalidUtf8(text); bad != std::string_view::npos) {
+    const size_t line = size_t(std::count(text.begin(), text.begin() + std::ptrdiff_t(bad), '\n')) + 1;
+    const size_t lineStart = text.rfind('\n', bad == 0 ? 0 : bad - 1);
+    const size_t column = lineStart == std::string::npos || bad == 0 ? bad + 1 : bad - lineStart;
+    return makeError(ExitCode::BadInput, "{}: not UTF-8 text: byte 0x{:02X} at line {}, column {}",
+                     path.filename().string(), unsigned(uint8_t(text[bad])), line, column);
+  }
   try {
     return json::parse(text);
   } catch (const json::parse_error& e) {
