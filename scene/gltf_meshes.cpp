@@ -115,6 +115,26 @@ std::string meshLabel(const tinygltf::Mesh& mesh, int index) {
   return mesh.name.empty() ? fmt::format("mesh {}", index) : fmt::format("mesh '{}'", mesh.name);
 }
 
+// POSITION's accessor min and max (required, glTF 2.0 §5.1.1) must bound its data: a file whose
+// positions fall outside them contradicts itself (what its bounds say is culled or framed wrongly
+// by any viewer that trusts them). Looser bounds are tolerated, and rounding of the bounds to fewer
+// digits than the data's (1e-5 of their magnitude).
+Status checkBounds(const tinygltf::Accessor& acc, const std::vector<glm::vec3>& positions, const std::string& file,
+                   const std::string& what) {
+  if (acc.minValues.size() != 3 || acc.maxValues.size() != 3 || positions.empty()) return okStatus();
+  for (int c = 0; c < 3; ++c) {
+    const double lo = acc.minValues[size_t(c)], hi = acc.maxValues[size_t(c)];
+    const double slack = 1e-5 * std::max({1.0, std::abs(lo), std::abs(hi)});
+    for (size_t i = 0; i < positions.size(); ++i) {
+      const double v = positions[i][c];
+      if (v < lo - slack || v > hi + slack)
+        return bad(file, "{}: position {} has {} = {}, outside the accessor's min {} and max {}", what, i, "xyz"[c], v,
+                   lo, hi);
+    }
+  }
+  return okStatus();
+}
+
 // A triangle strip's or fan's vertex order as a triangle list, with glTF 2.0's winding (§3.7.2.1):
 // strip triangle i is {v_i, v_{i+1+i%2}, v_{i+2-i%2}}, fan triangle i is {v_{i+1}, v_{i+2}, v_0}.
 std::vector<uint32_t> triangulate(const std::vector<uint32_t>& v, bool strip) {
@@ -147,6 +167,8 @@ Result<Primitive> convertPrimitive(MeshBuilder& builder, const tinygltf::Mesh& m
   auto positions = readVec3(model, attribute(src, "POSITION"), file);  // convertMesh checked it is there
   if (!positions) return positions.error();
   prim.positions = std::move(*positions);
+  RAYSTER_TRY(checkBounds(model.accessors[size_t(attribute(src, "POSITION"))], prim.positions, file,
+                          fmt::format("{} primitive {}", label, primIndex)));
   const size_t vertexCount = prim.positions.size();
   if (vertexCount > UINT32_MAX) return bad(file, "{} primitive {} has too many vertices", label, primIndex);
 

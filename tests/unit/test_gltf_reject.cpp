@@ -318,3 +318,21 @@ TEST(GltfSpec, LightsHaveNonNegativeIntensityAndOrderedCones) {
       "spot.outerConeAngle 2 is not in (0, pi/2]");
   expectSpecRefusal([&](Doc& d) { light(d, {{"type", "point"}, {"range", -1.0}}); }, "range -1");
 }
+
+TEST(GltfSpec, PositionBoundsHoldTheData) {
+  // The test quad spans [0, 1] in x and y; bounds that leave a corner outside contradict the file.
+  expectSpecRefusal(
+      [](Doc& d) {
+        const int acc = primitive(d)["attributes"]["POSITION"].get<int>();
+        d.j["accessors"][size_t(acc)]["min"] = {0.0, 0.0, 0.0};
+        d.j["accessors"][size_t(acc)]["max"] = {0.5, 1.0, 0.0};
+      },
+      "position 1 has x = 1, outside the accessor's min 0 and max 0.5");
+  // Looser bounds, and bounds rounded to fewer digits, are tolerated.
+  TempDir dir;
+  Doc d = quadDoc();
+  const int acc = primitive(d)["attributes"]["POSITION"].get<int>();
+  d.j["accessors"][size_t(acc)]["min"] = {-1.0, -1.0, -1.0};
+  d.j["accessors"][size_t(acc)]["max"] = {0.999999, 2.0, 1.0};
+  EXPECT_TRUE(loadBytes(dir, d.gltf()).ok());
+}
