@@ -159,8 +159,7 @@ Result<Primitive> convertPrimitive(MeshBuilder& builder, const tinygltf::Mesh& m
   // Strips and fans become triangle lists (triangulate() below).
   const bool strip = src.mode == TINYGLTF_MODE_TRIANGLE_STRIP, fan = src.mode == TINYGLTF_MODE_TRIANGLE_FAN;
   if (src.mode != TINYGLTF_MODE_TRIANGLES && src.mode != -1 && !strip && !fan)
-    return bad(file, "{} primitive {} uses mode {}, only triangles are supported", label, primIndex,
-               modeName(src.mode));
+    return bad(file, "{} primitive {} uses mode {}, which glTF does not define", label, primIndex, src.mode);
   if (!src.targets.empty()) log::warn("{}: {} primitive {}: morph targets are ignored", file, label, primIndex);
 
   Primitive prim;
@@ -255,6 +254,14 @@ Result<Mesh> convertMesh(MeshBuilder& builder, int meshIndex) {
     // rendering" (the spec), so the file is valid and only this primitive is left out.
     if (attribute(src.primitives[p], "POSITION") < 0) {
       log::warn("{}: {} primitive {} has no POSITION attribute; skipped", builder.file, meshLabel(src, meshIndex), p);
+      continue;
+    }
+    // Points and lines are valid glTF with no surface to shade or trace: left out, said once each.
+    const int mode = src.primitives[p].mode;
+    if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP ||
+        mode == TINYGLTF_MODE_LINE_STRIP) {
+      log::warn("{}: {} primitive {} is drawn as {}; Rayster draws surfaces only, skipped", builder.file,
+                meshLabel(src, meshIndex), p, modeName(mode));
       continue;
     }
     Result<Primitive> prim = convertPrimitive(builder, src, meshIndex, p);

@@ -192,11 +192,23 @@ TEST(GltfReject, RequiredUnknownExtension) {
                 "requires extension KHR_draco_mesh_compression, which Rayster does not support");
 }
 
-TEST(GltfReject, LinesMode) {
+TEST(GltfReject, UndefinedMode) {
   TempDir dir;
   Doc d = quadDoc();
-  primitive(d)["mode"] = 1;
-  expectRefused(loadBytes(dir, d.gltf()), "mesh 'quad' primitive 0 uses mode LINES, only triangles are supported");
+  primitive(d)["mode"] = 9;
+  expectRefused(loadBytes(dir, d.gltf()), "mesh 'quad' primitive 0 uses mode 9, which glTF does not define");
+}
+
+TEST(GltfReject, PointsAndLinesAreSkipped) {
+  // Valid glTF with nothing to shade: the primitive is left out (a warning says so), the file loads.
+  for (int mode : {0, 1, 2, 3}) {
+    TempDir dir;
+    Doc d = quadDoc();
+    primitive(d)["mode"] = mode;
+    Result<scene::Scene> s = loadBytes(dir, d.gltf());
+    ASSERT_TRUE(s.ok()) << mode << ": " << s.error().message;
+    EXPECT_EQ(s->triangleCount(), 0u) << mode;
+  }
 }
 
 TEST(GltfReject, WrongAccessorTypes) {
