@@ -301,6 +301,7 @@ Result<VettedJson> vetJson(const std::string& file, std::string_view text) {
       return bad(file, "is glTF {}; Rayster reads glTF 2.0", version->get<std::string>());
   }
   RAYSTER_TRY(checkExtensions(file, root));
+  RAYSTER_TRY(checkJsonTypes(file, root));
   if (const Json* buffers = member(root, "buffers"); buffers && buffers->is_array())
     for (size_t i = 0; i < buffers->size(); ++i)
       if (const Json* uri = member((*buffers)[i], "uri"); uri && uri->is_string())

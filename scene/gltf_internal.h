@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <tiny_gltf.h>
+#include <nlohmann/json_fwd.hpp>
 
 #include "core/error.h"
 #include "scene/scene.h"
@@ -79,6 +80,9 @@ struct MeshBuilder {
 Result<Mesh> convertMesh(MeshBuilder& builder, int meshIndex);
 
 // ---- gltf_validate.cpp: what the specification forbids and tinygltf accepts ----
+// The JSON types of the core properties (on the raw JSON: tinygltf takes a wrong type for absent),
+// then the model's ranges and references.
+Status checkJsonTypes(const std::string& file, const nlohmann::json& root);
 Status validateModel(const tinygltf::Model& model, const std::string& file);
 
 // ---- gltf_materials.cpp: images, samplers, textures and materials, in glTF order ----

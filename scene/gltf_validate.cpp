@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <nlohmann/json.hpp>
+
 #include "scene/gltf_internal.h"
 
 namespace rayster::scene::gltf {
@@ -134,10 +136,146 @@ Status checkLights(const tinygltf::Model& model, const std::string& file) {
   return okStatus();
 }
 
+// ---- JSON types, before tinygltf reads the file: tinygltf skips a property of the wrong type
+// (a primitives object, a texture reference without its index) as if it were absent.
+using Json = nlohmann::json;
+
+bool isIndex(const Json& v) { return v.is_number_integer() && v.get<int64_t>() >= 0; }
+
+class TypeCheck {
+ public:
+  explicit TypeCheck(const std::string& file) : file_(file) {}
+  Status object(const Json& v, const std::string& path) const { return expect(v.is_object(), path, "an object"); }
+  Status index(const Json& v, const std::string& path) const {
+    return expect(isIndex(v), path, "a non-negative integer index");
+  }
+  Status string(const Json& v, const std::string& path) const { return expect(v.is_string(), path, "a string"); }
+  Status numbers(const Json& v, const std::string& path) const {
+    bool ok = v.is_array();
+    if (ok)
+      for (const Json& x : v) ok = ok && x.is_number();
+    return expect(ok, path, "an array of numbers");
+  }
+  Status indices(const Json& v, const std::string& path) const {
+    bool ok = v.is_array();
+    if (ok)
+      for (const Json& x : v) ok = ok && isIndex(x);
+    return expect(ok, path, "an array of non-negative integer indices");
+  }
+  // An array of objects, each with an optional string name and object extensions.
+  Status objects(const Json& v, const std::string& path) const {
+    if (!v.is_array()) return expect(false, path, "an array");
+    for (size_t i = 0; i < v.size(); ++i) {
+      const std::string at = fmt::format("{}[{}]", path, i);
+      RAYSTER_TRY(object(v[i], at));
+      RAYSTER_TRY(common(v[i], at));
+    }
+    return okStatus();
+  }
+  // name, extensions (each an object) and extras (anything) of any glTF object.
+  Status common(const Json& o, const std::string& path) const {
+    if (auto n = o.find("name"); n != o.end()) RAYSTER_TRY(string(*n, path + ".name"));
+    if (auto e = o.find("extensions"); e != o.end()) {
+      RAYSTER_TRY(object(*e, path + ".extensions"));
+      for (auto it = e->begin(); it != e->end(); ++it)
+        RAYSTER_TRY(object(it.value(), path + ".extensions." + it.key()));
+    }
+    return okStatus();
+  }
+  // A textureInfo: an object with a required index.
+  Status textureInfo(const Json& v, const std::string& path) const {
+    RAYSTER_TRY(object(v, path));
+    RAYSTER_TRY(common(v, path));
+    const auto i = v.find("index");
+    if (i == v.end()) return Error{ExitCode::BadInput, fmt::format("{}: {}.index is required", file_, path)};
+    RAYSTER_TRY(index(*i, path + ".index"));
+    if (auto t = v.find("texCoord"); t != v.end()) RAYSTER_TRY(index(*t, path + ".texCoord"));
+    return okStatus();
+  }
+
+ private:
+  Status expect(bool ok, const std::string& path, const char* what) const {
+    if (ok) return okStatus();
+    return Error{ExitCode::BadInput, fmt::format("{}: {} is not {}", file_, path, what)};
+  }
+  const std::string& file_;
+};
+
+template <class F>
+Status eachMember(const Json& o, const char* key, F&& f) {
+  if (auto v = o.find(key); v != o.end()) return f(*v);
+  return okStatus();
+}
+
 }  // namespace
+
+Status checkJsonTypes(const std::string& file, const nlohmann::json& root) {
+  const TypeCheck t(file);
+  RAYSTER_TRY(t.common(root, "glTF"));
+  RAYSTER_TRY(eachMember(root, "asset", [&](const Json& a) { return t.object(a, "asset"); }));
+  RAYSTER_TRY(eachMember(root, "scene", [&](const Json& s) { return t.index(s, "scene"); }));
+  for (const char* key : {"accessors", "animations", "buffers", "bufferViews", "cameras", "images", "materials",
+                          "meshes", "nodes", "samplers", "scenes", "skins", "textures"})
+    RAYSTER_TRY(eachMember(root, key, [&](const Json& a) { return t.objects(a, key); }));
+  if (auto meshes = root.find("meshes"); meshes != root.end())
+    for (size_t m = 0; m < meshes->size(); ++m) {
+      const std::string at = fmt::format("meshes[{}].primitives", m);
+      const auto prims = (*meshes)[m].find("primitives");
+      if (prims == (*meshes)[m].end()) return Error{ExitCode::BadInput, fmt::format("{}: {} is required", file, at)};
+      RAYSTER_TRY(t.objects(*prims, at));
+      for (size_t p = 0; p < prims->size(); ++p) {
+        const Json& prim = (*prims)[p];
+        const std::string pat = fmt::format("{}[{}]", at, p);
+        RAYSTER_TRY(eachMember(prim, "attributes", [&](const Json& a) -> Status {
+          RAYSTER_TRY(t.object(a, pat + ".attributes"));
+          for (auto it = a.begin(); it != a.end(); ++it)
+            RAYSTER_TRY(t.index(it.value(), pat + ".attributes." + it.key()));
+          return okStatus();
+        }));
+        for (const char* key : {"indices", "material"})
+          RAYSTER_TRY(eachMember(prim, key, [&](const Json& v) { return t.index(v, pat + "." + key); }));
+      }
+    }
+  if (auto materials = root.find("materials"); materials != root.end())
+    for (size_t m = 0; m < materials->size(); ++m) {
+      const Json& mat = (*materials)[m];
+      const std::string at = fmt::format("materials[{}]", m);
+      RAYSTER_TRY(eachMember(mat, "pbrMetallicRoughness", [&](const Json& pbr) -> Status {
+        RAYSTER_TRY(t.object(pbr, at + ".pbrMetallicRoughness"));
+        for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"})
+          RAYSTER_TRY(eachMember(pbr, key,
+                                 [&](const Json& v) { return t.textureInfo(v, at + ".pbrMetallicRoughness." + key); }));
+        return okStatus();
+      }));
+      for (const char* key : {"normalTexture", "occlusionTexture", "emissiveTexture"})
+        RAYSTER_TRY(eachMember(mat, key, [&](const Json& v) { return t.textureInfo(v, at + "." + key); }));
+    }
+  if (auto nodes = root.find("nodes"); nodes != root.end())
+    for (size_t n = 0; n < nodes->size(); ++n) {
+      const Json& node = (*nodes)[n];
+      const std::string at = fmt::format("nodes[{}]", n);
+      RAYSTER_TRY(eachMember(node, "children", [&](const Json& v) { return t.indices(v, at + ".children"); }));
+      for (const char* key : {"mesh", "camera", "skin"})
+        RAYSTER_TRY(eachMember(node, key, [&](const Json& v) { return t.index(v, at + "." + key); }));
+      for (const char* key : {"matrix", "translation", "rotation", "scale", "weights"})
+        RAYSTER_TRY(eachMember(node, key, [&](const Json& v) { return t.numbers(v, at + "." + key); }));
+    }
+  if (auto scenes = root.find("scenes"); scenes != root.end())
+    for (size_t s = 0; s < scenes->size(); ++s)
+      RAYSTER_TRY(eachMember((*scenes)[s], "nodes",
+                             [&](const Json& v) { return t.indices(v, fmt::format("scenes[{}].nodes", s)); }));
+  if (auto textures = root.find("textures"); textures != root.end())
+    for (size_t i = 0; i < textures->size(); ++i)
+      for (const char* key : {"source", "sampler"})
+        RAYSTER_TRY(eachMember((*textures)[i], key,
+                               [&](const Json& v) { return t.index(v, fmt::format("textures[{}].{}", i, key)); }));
+  return okStatus();
+}
 
 Status validateModel(const tinygltf::Model& model, const std::string& file) {
   RAYSTER_TRY(checkAsset(model.asset, file));
+  if (model.defaultScene != -1 && !inRange(model.defaultScene, model.scenes.size()))
+    return bad(file, "scene {} does not exist ({} scenes)", model.defaultScene, model.scenes.size());
   RAYSTER_TRY(checkNodes(model, file));
   RAYSTER_TRY(checkTextures(model, file));
   RAYSTER_TRY(checkCameras(model, file));

@@ -54,3 +54,21 @@ if [ ${#missing[@]} -gt 0 ] || [ "$need_mesa" = 1 ]; then
   fi
 fi
 echo "setup: all packages present"
+
+# The official glTF-Validator from npm, pinned, into tools/npm (git-ignored): the loader's
+# cross-check. Without the registry the test says it skipped; nothing else needs it.
+VALIDATOR=gltf-validator@2.0.0-dev.3.10
+TOOLS="$(cd "$(dirname "$0")/.." && pwd)/tools/npm"
+if ! command -v npm >/dev/null 2>&1; then
+  # Debian's node and npm, unless the machine has its own (best effort: only this test needs them).
+  $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null 2>&1 ||
+    echo "setup: warning: could not install nodejs and npm" >&2
+fi
+if [ ! -f "$TOOLS/node_modules/gltf-validator/package.json" ] && command -v npm >/dev/null 2>&1; then
+  mkdir -p "$TOOLS"
+  if npm install --prefix "$TOOLS" --no-audit --no-fund --silent "$VALIDATOR" >/dev/null 2>&1; then
+    echo "setup: installed $VALIDATOR into tools/npm"
+  else
+    echo "setup: warning: could not install $VALIDATOR from npm; GltfValidator.* will skip" >&2
+  fi
+fi
