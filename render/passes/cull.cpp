@@ -181,14 +181,7 @@ void readbackCullStats(graph::RenderGraph& graph, const FrameInputs& in, const C
         const VkBufferCopy visibility{0, kCountBytes, rows * sizeof(uint32_t)};
         vkCmdCopyBuffer(pc.cmd, pc.buffer(culled.visibility).handle(), pc.buffer(readback).handle(), 1, &visibility);
       });
-  graph.addPass(
-      "host-visible-cull",
-      [&](graph::PassBuilder& b) {
-        b.read(readback, graph::Use::HostRead);
-        b.sideEffect();
-        b.kind(graph::PassKind::Readback);
-      },
-      [](graph::PassContext&) {});
+  makeHostVisible(graph, "host-visible-cull", readback);
 }
 
 CullCounts cullCounts(const GpuScene& scene) {

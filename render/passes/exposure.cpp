@@ -37,14 +37,7 @@ void meterExposure(graph::RenderGraph& graph, const FrameInputs& in, graph::Imag
         const VkBufferCopy all{0, 0, gpu::kExposureHistograms * gpu::kExposureBins * sizeof(uint32_t)};
         vkCmdCopyBuffer(pc.cmd, pc.buffer(histogram).handle(), pc.buffer(readback).handle(), 1, &all);
       });
-  graph.addPass(
-      "host-visible-exposure",
-      [&](graph::PassBuilder& b) {
-        b.read(readback, graph::Use::HostRead);
-        b.sideEffect();
-        b.kind(graph::PassKind::Readback);
-      },
-      [](graph::PassContext&) {});
+  makeHostVisible(graph, "host-visible-exposure", readback);
 }
 
 }  // namespace rayster::render

@@ -171,6 +171,9 @@ graph::ImageHandle tonemap(graph::RenderGraph& graph, const FrameInputs& in, gra
                            const ToneSettings& tone);
 // Copies an image into a host-visible buffer and makes it visible to the host.
 void readback(graph::RenderGraph& graph, graph::ImageHandle image, graph::BufferHandle buffer);
+// Makes what earlier passes copied into the host-visible `buffer` visible to the host, which reads
+// it after the frame's timeline value (a pass named `name`, never culled).
+void makeHostVisible(graph::RenderGraph& graph, const char* name, graph::BufferHandle buffer);
 
 // Auto exposure's meter (render/passes/exposure.cpp): the luminance histograms of `hdr` (rendered at
 // pre-exposure `exposure`) into `histogram` (shared/exposure.h: surfaces, normalised by the

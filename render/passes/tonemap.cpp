@@ -37,9 +37,12 @@ void readback(graph::RenderGraph& graph, graph::ImageHandle image, graph::Buffer
         vkCmdCopyImageToBuffer(pc.cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, pc.buffer(buffer).handle(),
                                1, &region);
       });
-  // The host reads after the frame's timeline value: make the copy visible to it.
+  makeHostVisible(graph, "host-visible", buffer);
+}
+
+void makeHostVisible(graph::RenderGraph& graph, const char* name, graph::BufferHandle buffer) {
   graph.addPass(
-      "host-visible",
+      name,
       [&](graph::PassBuilder& b) {
         b.read(buffer, graph::Use::HostRead);
         b.sideEffect();
