@@ -94,8 +94,7 @@ struct RenderSettings {
   // lighting takes every effect's raw signal and the frame keeps no denoiser history.
   bool denoise = true;
   float aoRadius = -1.0f;  // world units; <= 0: kAoRadiusFraction × the scene bounds' diagonal
-  // One-bounce ray-traced indirect diffuse; unset: the scene's indirectByDefault.
-  std::optional<bool> indirect;
+  bool indirect = true;    // ray-traced diffuse indirect light (--indirect; --gi picks how)
   IndirectRate indirectRate = IndirectRate::Quarter;  // --indirect-rate
   // Surface interactions along a path after the camera ray (--max-depth). The path tracer's paths
   // end after this many vertices (`frames` is then the samples per pixel, one per frame); the

@@ -14,7 +14,7 @@ namespace rayster::render {
 // Passes used only here, declared next to their one caller.
 graph::ImageHandle traceSkyVisibility(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
 graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                        uint32_t frameIndex, uint32_t seed, float historyScale, ProbeLookup& lookup);
+                                        const ProbeFrame& frame, ProbeLookup& lookup);
 
 namespace {
 
@@ -29,6 +29,10 @@ bool isCameraCut(const scene::Camera& before, const scene::Camera& now) {
   if (glm::length(now.position - before.position) > kCutMoveFraction * distance) return true;
   const float cosAngle = glm::dot(dirBefore, dirNow) / (distance * glm::length(dirNow));
   return cosAngle < std::cos(glm::radians(kCutAngleDegrees)) || now.yFov != before.yFov;
+}
+
+bool sameView(const scene::Camera& a, const scene::Camera& b) {
+  return a.position == b.position && a.target == b.target && a.up == b.up && a.yFov == b.yFov;
 }
 
 }  // namespace
@@ -53,6 +57,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   // A cut (the first frame of a run, a jump of the camera, or a listed frame) restarts every history.
   const bool cut = f == 0 || control.cut || isCameraCut(r.prevCamera, camera) ||
                    std::find(s.cuts.begin(), s.cuts.end(), f) != s.cuts.end();
+  const bool viewHeld = !cut && sameView(r.prevCamera, camera);
   histories.beginFrame(f, cut);
   exposure.beginFrame(cut);
   const glm::vec2 jitter = s.taa ? jitterNdc(f, s.width, s.height) : glm::vec2(0.0f);
@@ -67,6 +72,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
     // Motion vectors of this frame still show last frame's motion after the pose stops.
     moving = moving || moved || r.movedBefore;
     r.movedBefore = moved;
+    r.stillFrames = viewHeld && !moving ? r.stillFrames + 1 : 0;
     if (motion.takeTlasRefit(!rasterMode) && !rasterMode)  // the raster mode refits when it leaves
       updateTlas(graph, in, gpu.tlas.prepare(gpu.tlasInstances));
   }
@@ -86,7 +92,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
                       {kTaaHistoryFormat, s.width, s.height, 1,
                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
                       kRadianceImage);
-    hdr = resolveTaa(graph, in, {hdr, gb.depth, taa.previous, taa.next, gb.motion, taa.frames});
+    hdr = resolveTaa(graph, in, {hdr, gb.depth, taa.previous, taa.next, gb.motion, taa.frames, r.stillFrames});
   }
   images.hdr = hdr;
   const bool meter = exposure.automatic() && (control.meter || r.adaptExposure);
@@ -249,7 +255,8 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   // Probes first: the reflection bounce loop lights its hits from them too.
   ProbeLookup probeLookup;
   if (probes)
-    o.indirectRaw = o.indirect = traceProbeIrradiance(graph, in, gb, frameIndex, s.seed, exposure.ratio(), probeLookup);
+    o.indirectRaw = o.indirect =
+        traceProbeIrradiance(graph, in, gb, {frameIndex, s.seed, exposure.ratio(), moving}, probeLookup);
   if (specularPass) {
     o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit(), probeLookup);
     o.specular = svgf("specular", o.specularRaw);

@@ -87,6 +87,7 @@ struct Renderer::Impl {
     RenderOutput out;
     uint32_t frame = 0;
     bool animated = false, movedBefore = false;
+    uint32_t stillFrames = 0;  // frames in a row with neither the camera nor an instance moving (TaaInputs)
     // Auto exposure follows the frames (a viewer, a camera path, an animation, moved instances);
     // a headless still keeps the exposure its metering frames found.
     bool adaptExposure = false;
@@ -117,7 +118,7 @@ struct Renderer::Impl {
   Impl(rhi::Context& c, const scene::Scene& s, GpuScene g);
 
   // --- renderer.cpp: settings, cameras, constants, histories
-  bool indirectOn(const RenderSettings& s) const { return s.indirect.value_or(scene.indirectByDefault); }
+  bool indirectOn(const RenderSettings& s) const { return s.indirect; }
   // rt-indirect traces one pixel per 2×2 block (gpu::kEffectIndirectQuarter).
   bool indirectQuarter(const RenderSettings& s) const {
     return s.mode != Mode::Raster && indirectOn(s) && s.indirectRate == IndirectRate::Quarter;

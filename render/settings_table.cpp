@@ -186,25 +186,10 @@ std::vector<Setting> makeTable() {
     };
     t.push_back(std::move(s));
   }
-  {
-    Setting s{"indirect",
-              SettingKind::Choice,
-              "One-bounce ray-traced indirect diffuse: on, off or auto (on for builtin:whitted and builtin:cornell, "
-              "off otherwise)",
-              {"auto", "on", "off"},
-              0,
-              0,
-              "Effects",
-              kUseAll,
-              true};
-    s.get = [](const RenderSettings& r) { return std::string(!r.indirect ? "auto" : *r.indirect ? "on" : "off"); };
-    s.set = [s](RenderSettings& r, std::string_view text) -> Status {
-      if (Status c = checkChoice(s, text); !c) return c;
-      r.indirect = text == "auto" ? std::nullopt : std::optional<bool>(text == "on");
-      return okStatus();
-    };
-    t.push_back(std::move(s));
-  }
+  t.push_back(onOff("indirect", "Effects",
+                    "Ray-traced diffuse indirect light, as --gi computes it (off: ambient and the environment's SH "
+                    "irradiance instead)",
+                    &RenderSettings::indirect));
   t.push_back(choice("indirect-rate", "Effects",
                      "Pixels the indirect diffuse traces per frame: quarter (one of each 2x2 block, rotating over 4 "
                      "frames, the rest filled from traced neighbours of similar depth and normal) or full",

@@ -44,7 +44,6 @@ Scene makeCornellBox() {
   scene.name = "cornell";
   // A little ambient stands in for the interreflection when RT indirect light is off.
   scene.ambient = glm::vec3(0.02f);
-  scene.indirectByDefault = true;
 
   const uint32_t white = addMaterial(scene, {"white", glm::vec4(0.725f, 0.71f, 0.68f, 1.0f), 0.0f, 1.0f, {}, false});
   const uint32_t red = addMaterial(scene, {"red", glm::vec4(0.63f, 0.065f, 0.05f, 1.0f), 0.0f, 1.0f, {}, false});

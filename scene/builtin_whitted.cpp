@@ -56,7 +56,6 @@ Result<Scene> makeWhittedScene() {
   Scene scene;
   scene.name = "whitted";
   scene.environment = blueSky();
-  scene.indirectByDefault = true;
 
   const uint32_t marble = addMarbleMaterial(scene);
   addFloor(scene, glm::vec3(0.0f), kFloorSize, marble);

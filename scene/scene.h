@@ -218,11 +218,7 @@ struct Scene {
   std::vector<Camera> cameras;
   std::vector<CameraKey> cameraPath;
   Environment environment;
-  glm::vec3 ambient{0.0f};  // uniform ambient radiance, stand-in for indirect light when RT indirect is off
-  // Render one-bounce ray-traced indirect diffuse unless told otherwise (--indirect): set by the
-  // built-in scenes made to show it off; off for loaded scenes, where its cost is unknown.
-  bool indirectByDefault = false;
-
+  glm::vec3 ambient{0.0f};       // uniform ambient radiance, stand-in for indirect light when RT indirect is off
   Aabb bounds() const;           // world-space, over all instances
   size_t triangleCount() const;  // over all instances, i.e. what the TLAS holds
   bool animated() const { return !animations.empty(); }

@@ -22,9 +22,11 @@
 // bounces). A miss sees the environment. A hit on the back of a face records a negative distance
 // (−0.2 t), which the classifier reads (the probe may be inside geometry); on a single-sided
 // surface it also records no light.
-// Output (RGBA16F, texel (r, i)): rgb radiance (pre-exposed), a the hit distance.
+// Output (RGBA16F, texel (r, i)): outRays rgb the radiance (pre-exposed), a the hit distance;
+// outBounceRays rgb the share of that radiance that came through the probes (the bounce atlas).
 layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = 2, rgba16f) uniform writeonly image2D outRays;
+layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D outBounceRays;
 layout(set = 0, binding = 3) uniform sampler2D probeIrradianceTex;  // the frame before's (kProbeHistoryValid)
 layout(set = 0, binding = 4) uniform sampler2D probeVisibilityTex;
 layout(set = 0, binding = 5) uniform sampler2D probeDataTex;
@@ -58,6 +60,7 @@ void main() {
   // Casters only, as the indirect rays: a light's visible shape is direct light, counted already.
   traceRayEXT(tlas, sceneRayFlags(), kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, grid.maxDistance, 0);
   vec4 result;
+  vec3 bounce = vec3(0.0);
   if (payload.t < 0.0) {
     result = vec4(environmentRadiance(dir), grid.maxDistance);
   } else {
@@ -77,9 +80,14 @@ void main() {
       bsdf.diffuse *= 1.0 - gb.material.b;
       vec3 radiance = gb.emissive.rgb + directFromOneLight(bsdf, sp.position, hn, hng, -dir, rng);
       if ((grid.flags & kProbeHistoryValid) != 0u)
-        radiance += bsdf.diffuse / kPi * probeIrradiance(grid, sp.position, hn, -dir) * gb.albedo.a * grid.historyScale;
-      result = vec4(min(radiance, vec3(256.0)), backFace ? -0.2 * payload.t : payload.t);
+        bounce = bsdf.diffuse / kPi * probeIrradiance(grid, sp.position, hn, -dir) * gb.albedo.a * grid.historyScale;
+      // A firefly clamp on the whole (bright but finite, its hue kept), the bounce share scaled with it.
+      vec3 total = max(radiance, vec3(0.0)) + max(bounce, vec3(0.0));
+      float scale = 256.0 / max(256.0, max(total.r, max(total.g, total.b)));
+      bounce = max(bounce, vec3(0.0)) * scale;
+      result = vec4(total * scale, backFace ? -0.2 * payload.t : payload.t);
     }
   }
   imageStore(outRays, ivec2(r, probe), result);
+  imageStore(outBounceRays, ivec2(r, probe), vec4(bounce, 0.0));
 }

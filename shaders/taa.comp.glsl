@@ -16,8 +16,10 @@ layout(push_constant, scalar) uniform Push { TaaPush pc; };
 
 const uint kTaaHistoryValid = 1u;  // off: first frame, cut, resize — output the current colour
 const uint kTaaMotion = 2u;        // a motion image is bound; else camera motion from depth
+const uint kTaaStill = 4u;         // nothing moved since the history began: a plain running mean
 
 const float kGamma = 1.0;  // variance clip box μ ± γσ (Salvi)
+const float kHalfSaturated = 65000.0;  // near the largest half float (65504)
 
 
 ivec2 clampPixel(ivec2 p) { return clamp(p, ivec2(0), ivec2(pc.size) - 1); }
@@ -73,6 +75,17 @@ void main() {
   vec3 current = texelFetch(currentTex, p, 0).rgb;
   if ((pc.flags & kTaaHistoryValid) == 0u) {
     imageStore(outHistory, p, vec4(current, 1.0));
+    return;
+  }
+  if ((pc.flags & kTaaStill) != 0u) {
+    // A still view: the history is this pixel's mean so far, valid as it is. Clipping it to one
+    // frame's neighbourhood and weighting by 1/(1 + L) would both pull it towards dark samples
+    // (a bright light's anti-aliased edge, a noisy signal's rare bright samples).
+    vec3 stored = texelFetch(historyTex, p, 0).rgb;
+    // A history that saturated fp16 (an exposure still adapting to a very bright view) says nothing.
+    float weight = max(stored.r, max(stored.g, stored.b)) >= kHalfSaturated ? 1.0 : pc.currentWeight;
+    vec3 previous = max(stored, vec3(0.0)) * frame.exposureRatio;
+    imageStore(outHistory, p, vec4(mix(previous, current, weight), 1.0));
     return;
   }
 

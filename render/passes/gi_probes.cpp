@@ -21,12 +21,22 @@ namespace {
 
 const PassSetting kGi{
     passChoice("gi", "Effects",
-               "Diffuse indirect light where --indirect turns it on: path (one denoised bounce ray per "
-               "pixel) or probes (irradiance probes, multiple bounces)",
-               {"path", "probes"}, "path")};
+               "Diffuse indirect light where --indirect turns it on: probes (irradiance probes, multiple "
+               "bounces) or path (one denoised bounce ray per pixel)",
+               {"path", "probes"}, "probes")};
 
-constexpr uint32_t kMaxProbesPerAxis = 8;  // on the scene's longest axis
-constexpr float kMaxHysteresis = 0.97f;    // the blend's weight of the previous atlas once converged
+constexpr uint32_t kMaxProbesPerAxis = 8;   // on the scene's longest axis
+constexpr float kMaxHysteresis = 0.97f;     // the blend's weight of the previous atlas once converged
+constexpr float kMovingHysteresis = 0.85f;  // while the camera or an object moves: follow in a few frames
+// The light that came through the probes: multiple bounces converge at a rate of about
+// h + (1 − h)·ρ per frame (ρ the scene's interreflection, 0.6–0.85 indoors), so 0.97 would take
+// hundreds of frames; 0.5 settles a room within ~30 (docs/techniques.md §16b). That share is
+// smooth (irradiance seen at the hits), so the low hysteresis adds little flicker.
+constexpr float kBounceHysteresis = 0.5f;
+// For the first frames after a cut it is 0: each frame's bounce share is the last atlas seen once
+// more through this frame's rays (a power iteration, error × ρ per frame).
+constexpr uint32_t kBounceSettleFrames = 16;
+constexpr uint32_t kWarmupUpdates = 8;  // probe updates before a cut's first frame (see below)
 constexpr VkImageUsageFlags kUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
 
 // A reproducible random rotation per frame (Shoemake's uniform quaternion from three numbers).
@@ -81,7 +91,7 @@ rhi::ImageDesc atlasDesc(const gpu::ProbeGrid& g, uint32_t interior, VkFormat fo
 }  // namespace
 
 graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                        uint32_t frameIndex, uint32_t seed, float historyScale, ProbeLookup& lookup) {
+                                        const ProbeFrame& frame, ProbeLookup& lookup) {
   gpu::ProbeGrid grid = fitGrid(in.scene.bounds);
   const uint32_t probes = grid.counts.x * grid.counts.y * grid.counts.z;
   const auto irradiance =
@@ -89,16 +99,12 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
                     kRadianceImage);
   const auto visibility =
       graph.history("gi-probe-visibility", atlasDesc(grid, gpu::kProbeVisibilityTexels, VK_FORMAT_R32G32_SFLOAT));
+  const auto bounce = graph.history(
+      "gi-probe-bounce", atlasDesc(grid, gpu::kProbeIrradianceTexels, VK_FORMAT_R16G16B16A16_SFLOAT), kRadianceImage);
   const auto data = graph.history("gi-probe-data", {VK_FORMAT_R16G16B16A16_SFLOAT, probes, 1, 1, kUsage});
-  const uint32_t frames = std::min(irradiance.frames, visibility.frames);
-  grid.flags = (frames > 0 ? gpu::kProbeHistoryValid : 0u) | (data.frames > 0 ? gpu::kProbeDataValid : 0u);
-  // A running mean while the history is short, then an exponential one (a cut restarts it).
-  grid.hysteresis = std::min(kMaxHysteresis, float(frames) / float(frames + 1));
-  grid.rotation = frameRotation(frameIndex, seed);
-  grid.historyScale = historyScale;
-
-  const graph::ImageHandle rays = graph.createImage(
-      "gi-probe-rays", {VK_FORMAT_R16G16B16A16_SFLOAT, grid.raysPerProbe, probes, 1, kUsage}, kRadianceImage);
+  const uint32_t frames = std::min({irradiance.frames, visibility.frames, bounce.frames});
+  grid.rotation = frameRotation(frame.index, frame.seed);
+  grid.historyScale = frame.historyScale;
   const VkSampler linear = in.linear.handle();
   const rhi::RayTracingPipeline& trace = in.pipelines.rayTracing("probe_trace.rgen", [] {
     rhi::RayTracingPipelineDesc d;
@@ -107,42 +113,88 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
     d.hitGroups = radianceHitGroups();
     return d;
   });
-  graph.addPass(
-      "gi-probe-trace",
-      [&](graph::PassBuilder& b) {
-        b.pipeline(trace).bind("tlas", in.tlas).bind("outRays", rays);
-        b.bind("probeIrradianceTex", irradiance.previous, linear)
-            .bind("probeVisibilityTex", visibility.previous, linear);
-        b.bind("probeDataTex", data.previous);
-        b.rays(uint64_t(probes) * grid.raysPerProbe * 2);  // a probe ray and a shadow ray at its hit
-      },
-      [&trace, grid, probes](graph::PassContext& pc) {
-        pc.push(grid);
-        trace.trace(pc.cmd, grid.raysPerProbe, probes);
-      });
-  graph.addPass(
-      "gi-probe-classify",
-      [&](graph::PassBuilder& b) {
-        b.pipeline(in.pipelines.compute("probe_classify.comp"));
-        b.bind("raysTex", rays).bind("previousData", data.previous).bind("outData", data.next);
-      },
-      [grid, probes](graph::PassContext& pc) {
-        pc.push(grid);
-        vkCmdDispatch(pc.cmd, (probes + 63) / 64, 1, 1);
-      });
-  for (bool moments : {false, true}) {
-    const graph::RenderGraph::History& atlas = moments ? visibility : irradiance;
+  const rhi::ImageDesc rayDesc{VK_FORMAT_R16G16B16A16_SFLOAT, grid.raysPerProbe, probes, 1, kUsage};
+
+  // One update of the probes: trace their rays, relocate and classify the probes, update the
+  // distance moments and the irradiance. `n`: updates since the cut (the hysteresis schedule);
+  // `suffix` names a warm-up iteration's passes and images.
+  struct Atlases {
+    graph::ImageHandle irradiance, bounce, visibility, data;
+  };
+  auto update = [&](const Atlases& src, const Atlases& dst, uint32_t n, const std::string& suffix) {
+    gpu::ProbeGrid g = grid;
+    g.flags = n > 0 ? gpu::kProbeHistoryValid | gpu::kProbeDataValid : 0u;
+    // A running mean while the history is short, then an exponential one (a cut restarts it).
+    const float runningMean = float(n) / float(n + 1);
+    g.hysteresis = std::min(frame.moving ? kMovingHysteresis : kMaxHysteresis, runningMean);
+    g.bounceHysteresis = n < kBounceSettleFrames ? 0.0f : kBounceHysteresis;
+    if (!suffix.empty()) g.rotation = frameRotation(frame.index * 64u + n + 1u, frame.seed ^ 0x5bd1e995u);
+    const graph::ImageHandle rays = graph.createImage("gi-probe-rays" + suffix, rayDesc, kRadianceImage);
+    const graph::ImageHandle bounceRays = graph.createImage("gi-probe-bounce-rays" + suffix, rayDesc, kRadianceImage);
     graph.addPass(
-        moments ? "gi-probe-update-visibility" : "gi-probe-update-irradiance",
+        "gi-probe-trace" + suffix,
         [&](graph::PassBuilder& b) {
-          b.pipeline(in.pipelines.compute(moments ? "probe_update_visibility.comp" : "probe_update.comp"));
-          b.bind("raysTex", rays).bind("previousAtlas", atlas.previous).bind("outAtlas", atlas.next);
+          b.pipeline(trace).bind("tlas", in.tlas).bind("outRays", rays).bind("outBounceRays", bounceRays);
+          b.bind("probeIrradianceTex", src.irradiance, linear).bind("probeVisibilityTex", src.visibility, linear);
+          b.bind("probeDataTex", src.data);
+          b.rays(uint64_t(probes) * grid.raysPerProbe * 2);  // a probe ray and a shadow ray at its hit
         },
-        [grid, probes](graph::PassContext& pc) {
-          pc.push(grid);
-          vkCmdDispatch(pc.cmd, probes, 1, 1);
+        [&trace, g, probes](graph::PassContext& pc) {
+          pc.push(g);
+          trace.trace(pc.cmd, g.raysPerProbe, probes);
         });
+    graph.addPass(
+        "gi-probe-classify" + suffix,
+        [&](graph::PassBuilder& b) {
+          b.pipeline(in.pipelines.compute("probe_classify.comp"));
+          b.bind("raysTex", rays).bind("previousData", src.data).bind("outData", dst.data);
+        },
+        [g, probes](graph::PassContext& pc) {
+          pc.push(g);
+          vkCmdDispatch(pc.cmd, (probes + 63) / 64, 1, 1);
+        });
+    for (bool moments : {false, true}) {
+      graph.addPass(
+          (moments ? "gi-probe-update-visibility" : "gi-probe-update-irradiance") + suffix,
+          [&](graph::PassBuilder& b) {
+            b.pipeline(in.pipelines.compute(moments ? "probe_update_visibility.comp" : "probe_update.comp"));
+            b.bind("raysTex", rays)
+                .bind("previousAtlas", moments ? src.visibility : src.irradiance)
+                .bind("outAtlas", moments ? dst.visibility : dst.irradiance);
+            if (!moments)
+              b.bind("bounceRaysTex", bounceRays).bind("previousBounce", src.bounce).bind("outBounce", dst.bounce);
+          },
+          [g, probes](graph::PassContext& pc) {
+            pc.push(g);
+            vkCmdDispatch(pc.cmd, probes, 1, 1);
+          });
+    }
+  };
+
+  // After a cut the probes are updated kWarmupUpdates times before this frame's update, so multiple
+  // bounces have settled (to ρ^kWarmupUpdates) before the first image: a still of a few frames, or
+  // the first frames after a jump, are not missing the light of the later bounces, and the probes
+  // have moved out of the walls (relocation) before their light is averaged.
+  Atlases src{irradiance.previous, bounce.previous, visibility.previous, data.previous};
+  const Atlases dst{irradiance.next, bounce.next, visibility.next, data.next};
+  if (frames == 0) {
+    auto atlas = [&](const std::string& name, uint32_t interior, VkFormat format, bool radiance) {
+      return graph.createImage(name, atlasDesc(grid, interior, format), radiance ? kRadianceImage : 0u);
+    };
+    for (uint32_t i = 0; i < kWarmupUpdates; ++i) {
+      const std::string suffix = "-warmup" + std::to_string(i);
+      Atlases next;
+      next.visibility =
+          atlas("gi-probe-visibility" + suffix, gpu::kProbeVisibilityTexels, VK_FORMAT_R32G32_SFLOAT, false);
+      next.data = graph.createImage("gi-probe-data" + suffix, {VK_FORMAT_R16G16B16A16_SFLOAT, probes, 1, 1, kUsage});
+      next.irradiance =
+          atlas("gi-probe-irradiance" + suffix, gpu::kProbeIrradianceTexels, VK_FORMAT_R16G16B16A16_SFLOAT, true);
+      next.bounce = atlas("gi-probe-bounce" + suffix, gpu::kProbeIrradianceTexels, VK_FORMAT_R16G16B16A16_SFLOAT, true);
+      update(src, next, i, suffix);
+      src = next;
+    }
   }
+  update(src, dst, frames + kWarmupUpdates, "");
   grid.flags |= gpu::kProbeHistoryValid | gpu::kProbeDataValid;  // the lookup reads this frame's atlases
   lookup = {irradiance.next, visibility.next, data.next, grid};
   lookup.grid.flags |= gpu::kProbeLookup;

@@ -95,6 +95,12 @@ RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, co
                             bool indirectQuarter, uint32_t lightsPerHit);
 // Denoised by denoiseShadows() (render/passes/denoise.h).
 
+// What the probe passes need to know of the frame (render/passes/gi_probes.cpp).
+struct ProbeFrame {
+  uint32_t index = 0, seed = 0;  // the frame's number and the run's seed: the rays' random rotation
+  float historyScale = 1.0f;     // the exposure ratio the previous atlases are read × by
+  bool moving = false;           // the camera or an object moves: lower hysteresis, to follow it
+};
 // Reflections and refractions of mirror, metal and glass pixels (RGBA16F radiance, 0 elsewhere).
 // `bounces` (FrameConstants::maxSpecularBounces) and `lightsPerHit` only count its rays (PassInfo::rays).
 // Irradiance probes (render/passes/gi_probes.cpp, --gi probes): this frame's atlases and grid, for
@@ -158,7 +164,14 @@ struct TaaInputs {
   graph::ImageHandle next;     // RGBA16F, storage + sampled
   graph::ImageHandle motion;   // optional RG16F uvCur − uvPrev; without it: camera motion from depth
   uint32_t historyFrames = 0;  // frames in the history since the last reset; 0: output current
+  // Frames in a row (this one included) in which neither the camera nor any instance moved: a still
+  // view. The history is then a running mean (no anti-firefly weights, no clip), so the image
+  // converges to the supersampled mean instead of one biased towards dark samples.
+  uint32_t stillFrames = 0;
 };
+// A still view's running mean counts at most this many frames (then an exponential mean of that
+// window): the fp16 history would stop taking smaller steps.
+inline constexpr uint32_t kTaaMaxStillFrames = 256;
 graph::ImageHandle resolveTaa(graph::RenderGraph& graph, const FrameInputs& in, const TaaInputs& taa);
 
 // The HDR input is already exposed (sources are pre-exposed, lib/frame.glsl): no exposure here.

@@ -12,6 +12,7 @@ namespace rayster::gpu {
 // Octahedral tiles per probe: interior texels per side; each tile has a one-texel border that
 // repeats the octahedral neighbours, so bilinear filtering never reads another probe.
 RAYSTER_CONST uint kProbeIrradianceTexels = 8u;   // RGBA16F: rgb irradiance E (= π × cosine-weighted mean L)
+                                                  // (and the bounce atlas: its share that came through probes)
 RAYSTER_CONST uint kProbeVisibilityTexels = 16u;  // RG32F: mean and mean square of the hit distance
 RAYSTER_CONST uint kProbeRaysPerProbe = 128u;     // rays traced per probe and frame
 // ProbeGrid::flags
@@ -26,20 +27,21 @@ RAYSTER_CONST float kProbeMaxOffset = 0.45;         // of the spacing per axis: 
 struct ProbeGrid {
   vec3 origin;  // world position of probe (0, 0, 0)
   uint raysPerProbe;
-  vec3 spacing;        // between neighbouring probes, per axis
-  uint tilesPerRow;    // atlas columns (both atlases): probe i's tile is (i % tilesPerRow, i / tilesPerRow)
-  uvec3 counts;        // probes per axis (≥ 2 each); probe index = x + counts.x·(y + counts.y·z)
-  uint flags;          // kProbe*
-  vec4 rotation;       // this frame's random rotation of the ray directions (unit quaternion)
-  float hysteresis;    // weight of the previous atlas in the blend (0: this frame only)
-  float normalBias;    // lookup point offset along the normal, × the smallest spacing
-  float viewBias;      // and towards the viewer
-  float maxDistance;   // what a ray that misses records as its distance
+  vec3 spacing;            // between neighbouring probes, per axis
+  uint tilesPerRow;        // atlas columns (both atlases): probe i's tile is (i % tilesPerRow, i / tilesPerRow)
+  uvec3 counts;            // probes per axis (≥ 2 each); probe index = x + counts.x·(y + counts.y·z)
+  uint flags;              // kProbe*
+  vec4 rotation;           // this frame's random rotation of the ray directions (unit quaternion)
+  float hysteresis;        // weight of the previous atlas in the blend (0: this frame only): direct light
+  float bounceHysteresis;  // the same for the light that bounced through the probes (lower: see §16b)
+  float normalBias;        // lookup point offset along the normal, × the smallest spacing
+  float viewBias;          // and towards the viewer
+  float maxDistance;       // what a ray that misses records as its distance
   float historyScale;  // the exposure ratio (FrameConstants::exposureRatio) the previous irradiance atlas is read × by
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(ProbeGrid) == 84);
+static_assert(sizeof(ProbeGrid) == 88);
 }  // namespace rayster::gpu
 #endif
 

@@ -94,7 +94,15 @@ class EffectPasses : public ::testing::Test {
 };
 
 TEST_F(EffectPasses, EveryEffectOnRecordsItsPassesAndHistories) {
-  const Listing l = list("builtin:whitted", "");
+  const Listing probes = list("builtin:whitted", "");
+  for (const char* p : {"gi-probe-trace", "gi-probe-classify", "gi-probe-update-irradiance",
+                        "gi-probe-update-visibility", "gi-probe-sample"})
+    EXPECT_TRUE(probes.hasPass(p)) << p << ": the probes are the default diffuse indirect light";
+  for (const char* i : {"gi-probe-irradiance", "gi-probe-bounce", "gi-probe-visibility", "gi-probe-data"})
+    EXPECT_TRUE(probes.images.count(i)) << i;
+  EXPECT_FALSE(probes.anyPass("rt-indirect")) << "the probes take the one-bounce path's place";
+
+  const Listing l = list("builtin:whitted", "--gi path");
   for (const char* p :
        {"rt-shadows", "rt-ao", "shadow-temporal", "rt-specular", "rt-specular-fill", "reflection-temporal",
         "rt-indirect", "rt-indirect-fill", "indirect-temporal", "denoise-surface"})
@@ -115,6 +123,8 @@ TEST_F(EffectPasses, AnEffectSwitchedOffRecordsNoPassAndNoImage) {
   const Listing indirect = list("builtin:whitted", "--indirect off");
   EXPECT_FALSE(indirect.anyPass("indirect"));
   EXPECT_FALSE(indirect.anyImage("indirect"));
+  EXPECT_FALSE(indirect.anyPass("gi-probe"));
+  EXPECT_FALSE(indirect.anyImage("gi-"));
   EXPECT_TRUE(indirect.hasPass("rt-specular"));
 
   // Many-light mode (no shadow layer) with AO off: nothing shadows, nothing occludes.
@@ -131,7 +141,7 @@ TEST_F(EffectPasses, AnEffectSwitchedOffRecordsNoPassAndNoImage) {
 }
 
 TEST_F(EffectPasses, DenoiseOffKeepsNoDenoiserPassOrHistory) {
-  const Listing l = list("builtin:whitted", "--denoise off");
+  const Listing l = list("builtin:whitted", "--denoise off --gi path");
   EXPECT_FALSE(l.anyPass("temporal"));
   EXPECT_FALSE(l.anyPass("atrous"));
   for (const std::string& i : l.images)
@@ -139,7 +149,7 @@ TEST_F(EffectPasses, DenoiseOffKeepsNoDenoiserPassOrHistory) {
   EXPECT_FALSE(l.images.count("surface-prev"));
   EXPECT_TRUE(l.hasPass("rt-indirect-fill")) << "quarter-rate indirect still fills its blocks";
   // At full rate nothing needs the surface image either.
-  const Listing full = list("builtin:whitted", "--denoise off --indirect-rate full");
+  const Listing full = list("builtin:whitted", "--denoise off --gi path --indirect-rate full");
   EXPECT_FALSE(full.hasPass("denoise-surface"));
   EXPECT_FALSE(full.anyImage("surface"));
 }

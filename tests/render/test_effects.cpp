@@ -145,7 +145,7 @@ TEST(Indirect, WhitePlaneUnderAUniformEnvironmentReturnsItsAlbedo) {
   // (1: the diffuse layer 0.96 plus the Fresnel share 0.04 reflecting the same environment).
   auto dir = testDir();
   auto scene = writeSceneFile(dir, {floorQuad(-50, 50, -50, 50, "white")}, true, {0, 3, 4}, {0, 0, 0});
-  auto on = renderAovs(dir, scene.string(), "--frames 4 --indirect on", "indirect-raw,indirect-denoised");
+  auto on = renderAovs(dir, scene.string(), "--frames 4 --indirect on --gi path", "indirect-raw,indirect-denoised");
   for (int c = 0; c < 3; ++c) {
     EXPECT_NEAR(meanChannel(on["indirect-raw"], c), 3.14159265, 0.01) << "E = π·1 in channel " << c;
     EXPECT_NEAR(meanChannel(on["hdr"], c), 1.0, 0.02) << "channel " << c;

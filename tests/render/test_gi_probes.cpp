@@ -54,10 +54,15 @@ TEST_F(GiProbes, ProbesReplaceThePathWhereIndirectLightIsOn) {
   EXPECT_EQ(probes.output.find("rt-indirect"), std::string::npos) << probes.output;
   EXPECT_EQ(probes.output.find("indirect-temporal"), std::string::npos) << probes.output;
 
-  RunResult path = runRayster("render builtin:cornell --size 48x32 --frames 2 --timings -o " + png);
+  RunResult path = runRayster("render builtin:cornell --size 48x32 --frames 2 --timings --gi path -o " + png);
   ASSERT_EQ(path.exitCode, 0) << path.output;
   EXPECT_NE(path.output.find("rt-indirect"), std::string::npos) << path.output;
   EXPECT_EQ(path.output.find("gi-probe"), std::string::npos) << path.output;
+
+  RunResult byDefault = runRayster("render builtin:spheres --size 48x32 --frames 2 --timings -o " + png);
+  ASSERT_EQ(byDefault.exitCode, 0) << byDefault.output;
+  EXPECT_NE(byDefault.output.find("gi-probe-sample"), std::string::npos) << "probes by default, every scene\n"
+                                                                         << byDefault.output;
 
   RunResult off =
       runRayster("render builtin:cornell --size 48x32 --frames 2 --timings --gi probes --indirect off -o " + png);
@@ -66,9 +71,9 @@ TEST_F(GiProbes, ProbesReplaceThePathWhereIndirectLightIsOn) {
 }
 
 TEST_F(GiProbes, CornellBoxEnergyIsCloserToThePathTracerThanOneBounce) {
-  const ImageF reference = render("reference", "--mode pathtrace --frames 256");
+  const ImageF reference = render("reference", "--mode pathtrace --frames 256 --max-depth 32");
   const ImageF probes = render("probes", "--frames 32 --gi probes");
-  const ImageF path = render("path", "--frames 32");
+  const ImageF path = render("path", "--frames 32 --gi path");
   const ImageF none = render("none", "--frames 32 --indirect off");
   const double ref = meanLuminance(reference);
   ASSERT_GT(ref, 0.0);
@@ -76,8 +81,7 @@ TEST_F(GiProbes, CornellBoxEnergyIsCloserToThePathTracerThanOneBounce) {
                eNone = meanLuminance(none) / ref - 1.0;
   EXPECT_LT(std::abs(eProbes), std::abs(ePath)) << "probes " << eProbes << ", one bounce " << ePath;
   EXPECT_LT(std::abs(eProbes), std::abs(eNone)) << "probes " << eProbes << ", no indirect light " << eNone;
-  // Where it stands (issue 14 asks ±5 %): the reflection bounce loop's hits and the mirror do not
-  // see the probes yet. Recorded, not asserted.
+  // Per scene and effect mask, against references of more samples: tests/render/test_fidelity.cpp.
   RecordProperty("energy_probes", std::to_string(eProbes));
   RecordProperty("energy_one_bounce", std::to_string(ePath));
   RecordProperty("energy_no_indirect", std::to_string(eNone));
@@ -100,6 +104,28 @@ TEST_F(GiProbes, TheProbeAtlasIsAnAov) {
   }
   EXPECT_GT(hi, lo) << "a lit atlas, not uniform";
   EXPECT_GT(meanLuminance(aovs["gi-irradiance"]), 0.0);
+}
+
+// Multiple bounces settle within 30 frames of a cut (the warm-up updates and the bounce share's low
+// hysteresis, docs/techniques.md §16b): in the Blender room, lit by one point light and mostly by
+// interreflection, the probes' irradiance at the G-buffer after 30 frames is within 3 % of what it
+// is after 120. (Before: 0.97 hysteresis on everything, 30 frames were ~35 % short.) What still
+// drifts after the warm-up is the distance moments' variance, which grows as more ray directions
+// are averaged and softens the Chebyshev weights: 4 frames are ~5 % short, printed.
+TEST_F(GiProbes, MultipleBouncesSettleWithinThirtyFramesOfACut) {
+  const std::string room = (std::filesystem::path(RAYSTER_SOURCE_DIR) / "assets/corpus/room.glb").string();
+  auto irradiance = [&](int frames) {
+    auto aovs =
+        renderAovs(dir_, room + " --size 64x48 --taa off --frames " + std::to_string(frames), {"gi-irradiance"});
+    EXPECT_EQ(aovs.size(), 1u);
+    return aovs.empty() ? 0.0 : meanLuminance(aovs["gi-irradiance"]);
+  };
+  const double settled = irradiance(120), at30 = irradiance(30), at4 = irradiance(4);
+  ASSERT_GT(settled, 0.0);
+  std::printf("room probe irradiance vs 120 frames: 4 frames %+.4f, 30 frames %+.4f\n", at4 / settled - 1.0,
+              at30 / settled - 1.0);
+  EXPECT_NEAR(at30 / settled, 1.0, 0.03);
+  EXPECT_LT(at4 / settled, 1.03) << "no overshoot";
 }
 
 // Relocation and classification (probe_classify.comp): a solid block in the middle of a floor holds

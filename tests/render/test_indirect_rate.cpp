@@ -23,12 +23,13 @@ namespace {
 
 constexpr float kSkipped = 0.25f;  // raw_indirect.rgen's mark of a pixel another pixel of its block traced
 
-// `frames` frames of `scene` at w × h with --raw-rays and indirect light on; the AOVs by name.
+// `frames` frames of `scene` at w × h with the one-bounce path's indirect light on; the AOVs by name.
 std::map<std::string, ImageF> render(const std::filesystem::path& dir, const std::string& scene, int w, int h,
                                      const std::string& args, const std::vector<std::string>& aovs) {
-  return renderAovs(
-      dir, scene + " --primary raster --indirect on --size " + std::to_string(w) + "x" + std::to_string(h) + " " + args,
-      aovs);
+  return renderAovs(dir,
+                    scene + " --primary raster --indirect on --gi path --size " + std::to_string(w) + "x" +
+                        std::to_string(h) + " " + args,
+                    aovs);
 }
 
 float at(const ImageF& img, int x, int y, int c = 0) { return img.pixel(x, y)[c]; }
@@ -39,9 +40,9 @@ TEST(IndirectRate, PassesReportOneInvocationPerBlockAtQuarterRate) {
   auto dir = testDir();
   for (const auto& [rate, invocations] : {std::pair{"full", 63ull * 47}, std::pair{"quarter", 32ull * 24}}) {
     const auto json = dir / (std::string(rate) + ".json");
-    RunResult r =
-        runRayster("render builtin:cornell --size 63x47 --frames 1 --indirect on --raw-rays --indirect-rate " +
-                   std::string(rate) + " --json " + json.string() + " -o " + (dir / "out.png").string());
+    RunResult r = runRayster(
+        "render builtin:cornell --size 63x47 --frames 1 --indirect on --gi path --raw-rays --indirect-rate " +
+        std::string(rate) + " --json " + json.string() + " -o " + (dir / "out.png").string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
     int found = 0;

@@ -90,7 +90,7 @@ TEST(RawTwins, IndirectTwinBounceRaysHitInsideTheBoxAndMissUnderTheSky) {
   // every pixel traces (the quarter rate's block pattern: test_indirect_rate.cpp).
   auto dir = testDir();
   auto fraction = [&](const std::string& scene) {
-    auto img = renderTwins(dir, scene, "--primary raster --indirect on --indirect-rate full",
+    auto img = renderTwins(dir, scene, "--primary raster --indirect on --gi path --indirect-rate full",
                            {"indirect-raw", "raw-indirect"});
     size_t hits = 0, traced = 0;
     for (int y = 0; y < kH; ++y)

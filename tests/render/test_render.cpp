@@ -118,8 +118,8 @@ TEST(Render, TimingsAndJson) {
   RunResult r = runRayster("render --size 64x48 --frames 2 --primary raster --timings --json " + json.string() +
                            " -o " + (dir / "a.png").string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  for (const char* pass :
-       {"gbuffer-raster", "rt-shadows", "rt-ao", "rt-indirect", "lighting", "tonemap", "frame (GPU)"})
+  for (const char* pass : {"gbuffer-raster", "rt-shadows", "rt-ao", "gi-probe-trace", "gi-probe-sample", "lighting",
+                           "tonemap", "frame (GPU)"})
     EXPECT_NE(r.output.find(pass), std::string::npos) << pass << " missing in:\n" << r.output;
   ASSERT_TRUE(std::filesystem::exists(json));
 }
