@@ -266,7 +266,8 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     o.indirectRaw = traceIndirect(graph, in, gb, surface.current, indirectQuarter(s));
     o.indirect = svgf("indirect", o.indirectRaw);
   }
-  o.hdr = shadeLighting(graph, in, gb, {o.shadow, o.specular, o.ao, o.indirect, direct});
+  o.hdr =
+      shadeLighting(graph, in, gb, {o.shadow, o.specular, o.ao, o.indirect, direct, probeLookup.specularIrradiance});
   return o;
 }
 

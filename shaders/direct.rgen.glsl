@@ -119,6 +119,8 @@ void main() {
   s.tracedWeight = tracedSpecularWeight(s.roughness, s.transmission);
   s.envOcclusion = 1.0;  // direct light only: AO never applies to it
   s.useIndirect = false;
+  s.useIndirectSpecular = false;
+  s.indirectSpecular = vec3(0.0);
   s.indirect = vec3(0.0);
   uint rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kShadowStream);
   vec3 direct = shadeDirect(s, shadingTerms(s), rng);

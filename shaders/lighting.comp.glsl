@@ -27,6 +27,7 @@ layout(set = 0, binding = 9) uniform sampler2DArray aoTex;  // layer frame.aoLay
 layout(set = 0, binding = 10) uniform sampler2D indirectTex;  // rgb: irradiance E; read when kEffectIndirect
 layout(set = 0, binding = 11) uniform sampler2D directTex;  // many-light mode: stochastic direct light
 layout(set = 0, binding = 12) uniform sampler2D specularGbufTex;  // encodeSpecular(): F0 tint, strength
+layout(set = 0, binding = 13) uniform sampler2D indirectSpecularTex;  // kEffectIndirectSpecular: E about r
 
 ivec2 gPixel;
 
@@ -69,6 +70,8 @@ void main() {
   s.envOcclusion = texelFetch(aoTex, ivec3(px, int(frame.aoLayer)), 0).r;
   s.useIndirect = (frame.effectFlags & kEffectIndirect) != 0u;
   s.indirect = s.useIndirect ? texelFetch(indirectTex, px, 0).rgb : vec3(0.0);
+  s.useIndirectSpecular = (frame.effectFlags & kEffectIndirectSpecular) != 0u;
+  s.indirectSpecular = s.useIndirectSpecular ? texelFetch(indirectSpecularTex, px, 0).rgb : vec3(0.0);
   uint rng = 0u;  // visibility comes from the shadow image: no random numbers needed here
   vec3 traced = texelFetch(specularTex, px, 0).rgb;
   // Glass writes radiance; opaque surfaces the lobe average, remodulated by the lobe's albedo.

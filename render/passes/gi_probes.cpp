@@ -200,12 +200,15 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
   lookup.grid.flags |= gpu::kProbeLookup;
   const graph::ImageHandle out =
       graph.createImage("gi-irradiance", {kRadianceFormat, in.size.width, in.size.height, 1, kUsage}, kRadianceImage);
+  lookup.specularIrradiance = graph.createImage(
+      "gi-irradiance-specular", {kRadianceFormat, in.size.width, in.size.height, 1, kUsage}, kRadianceImage);
   graph.addPass(
       "gi-probe-sample",
       [&](graph::PassBuilder& b) {
         b.pipeline(in.pipelines.compute("probe_sample.comp")).bind("depthTex", gb.depth).bind("normalTex", gb.normals);
         b.bind("probeIrradianceTex", irradiance.next, linear).bind("probeVisibilityTex", visibility.next, linear);
         b.bind("probeDataTex", data.next).bind("outIrradiance", out);
+        b.bind("outSpecularIrradiance", lookup.specularIrradiance);
       },
       [grid, size = in.size](graph::PassContext& pc) {
         pc.push(grid);

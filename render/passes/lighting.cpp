@@ -6,7 +6,7 @@ namespace rayster::render {
 
 graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                  const LightingInputs& inputs, const std::string& name) {
-  const auto [visibility, specular, ao, indirect, direct] = inputs;
+  const auto [visibility, specular, ao, indirect, direct, indirectSpecular] = inputs;
   // Without many-light direct light the binding still needs an image; the shader does not read it.
   const graph::ImageHandle directOrUnused = direct.valid() ? direct : specular;
   graph::ImageHandle hdr =
@@ -21,6 +21,7 @@ graph::ImageHandle shadeLighting(graph::RenderGraph& graph, const FrameInputs& i
         bindSurface(b, gb);
         b.bind("visibilityTex", visibility).bind("specularTex", specular).bind("aoTex", ao);
         b.bind("indirectTex", indirect).bind("directTex", directOrUnused).bind("outColor", hdr);
+        b.bind("indirectSpecularTex", indirectSpecular.valid() ? indirectSpecular : indirect);
       },
       [size = in.size](graph::PassContext& pc) {
         vkCmdDispatch(pc.cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);

@@ -108,6 +108,7 @@ struct ProbeFrame {
 struct ProbeLookup {
   graph::ImageHandle irradiance, visibility, data;  // invalid: no probes
   gpu::ProbeGrid grid{};                            // flags has kProbeLookup when valid
+  graph::ImageHandle specularIrradiance;            // E about each G-buffer pixel's mirror direction
 };
 // `probes`: the probes light the diffuse part of the loop's hits (else ambient and the SH environment).
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t bounces,
@@ -145,11 +146,12 @@ graph::ImageHandle tracePaths(graph::RenderGraph& graph, const FrameInputs& in, 
 
 // What the lighting pass combines with the G-buffer.
 struct LightingInputs {
-  graph::ImageHandle visibility;  // shadow layers (R16F array)
-  graph::ImageHandle specular;    // traced reflections/refractions (RGBA16F)
-  graph::ImageHandle ao;          // RT ambient occlusion (R16F array, one layer)
-  graph::ImageHandle indirect;    // one-bounce indirect irradiance E (RGBA16F)
-  graph::ImageHandle direct;      // many-light direct radiance; invalid when every light has a layer
+  graph::ImageHandle visibility;        // shadow layers (R16F array)
+  graph::ImageHandle specular;          // traced reflections/refractions (RGBA16F)
+  graph::ImageHandle ao;                // RT ambient occlusion (R16F array, one layer)
+  graph::ImageHandle indirect;          // one-bounce indirect irradiance E (RGBA16F)
+  graph::ImageHandle direct;            // many-light direct radiance; invalid when every light has a layer
+  graph::ImageHandle indirectSpecular;  // probes: E about the mirror direction (kEffectIndirectSpecular)
 };
 // `name`: the pass's name; its output image is "hdr" for "lighting", else "<name>-hdr" (the raster
 // mode lights twice: a first image for screen-space reflections to read, then the final one).

@@ -28,6 +28,8 @@ struct ShadingInput {
   float envOcclusion;  // ray-traced AO: scales ambient and environment light only, never direct light
   bool useIndirect;    // diffuse indirect light is `indirect` (RT one bounce), not ambient + SH environment
   vec3 indirect;       // irradiance E of the diffuse indirect light, when useIndirect
+  bool useIndirectSpecular;  // the untraced specular light is indirectSpecular / π (probes), not the environment's
+  vec3 indirectSpecular;     // irradiance E about the mirror direction reflect(−v, n)
 };
 
 struct ShadingTerms {
@@ -115,7 +117,15 @@ vec3 shadeSurface(ShadingInput s, bool direct, bool onePick, inout uint rng) {
   // count it twice), else the SH irradiance scaled by AO. Specular (the untraced share) along the
   // mirror direction, blurred towards the irradiance as roughness grows, scaled by AO.
   if (s.useIndirect) radiance += bsdf.diffuse * s.indirect / kPi * (1.0 - fd) * s.ao;
-  if (frame.environmentKind != kEnvironmentBlack) {
+  if (s.useIndirectSpecular) {
+    // The probes see the room as well as the sky: their irradiance about r over π is the cosine-
+    // weighted radiance around the mirror direction, a rough lobe's blur. The probes are too far
+    // apart to see a contact shadow (a sphere on a floor), so AO scales it as it scaled the
+    // environment's.
+    if (w < 1.0) radiance += (1.0 - w) * t.fv * s.indirectSpecular / kPi * occlusion;
+    if (!s.useIndirect && frame.environmentKind != kEnvironmentBlack)
+      radiance += bsdf.diffuse * environmentIrradiance(s.n) / kPi * (1.0 - fd) * occlusion;
+  } else if (frame.environmentKind != kEnvironmentBlack) {
     if (!s.useIndirect) radiance += bsdf.diffuse * environmentIrradiance(s.n) / kPi * (1.0 - fd) * occlusion;
     if (w < 1.0) {
       vec3 r = reflect(-s.v, s.n);

@@ -72,6 +72,9 @@ RAYSTER_CONST uint kEffectPrefilteredEnv = 4u;  // untraced glossy light from th
 // With kEffectIndirect: rt-indirect traces one pixel of each 2×2 block per frame (a quarter-size
 // launch, lib/indirect_ray.glsl) and rt-indirect-fill fills the others (--indirect-rate quarter).
 RAYSTER_CONST uint kEffectIndirectQuarter = 8u;
+// The probes (--gi probes) also give the untraced specular light: their irradiance about the
+// mirror direction / π (lighting's indirectSpecularTex), in place of the environment's.
+RAYSTER_CONST uint kEffectIndirectSpecular = 16u;
 // Levels of the prefiltered environment (render/gpu_environment.cpp): level k (1..N) is GGX
 // roughness k/N, each kPrefilteredWidth × kPrefilteredWidth/2, stacked vertically in one image.
 RAYSTER_CONST uint kPrefilteredLevels = 6u;

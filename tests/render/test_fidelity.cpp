@@ -1,9 +1,10 @@
-// Fidelity: the hybrid frame (denoised, TAA on, after kHybridFrames static frames) against a converged
-// path-traced reference of the same scene, per effect. The masks come from the hybrid's own G-buffer
-// AOVs (tests/fidelity/masks.h: shadowed, reflective, refractive, rest, plus the whole image), the errors from the real
-// `rayster compare --mask --json`, and the budgets are frozen in tests/fidelity/budgets.json.
-// The noise floor is the same comparison between two references rendered with different seeds: a
-// budget below it could not tell a renderer bug from Monte Carlo noise.
+// Fidelity: the hybrid frame (default settings: denoised, TAA on, probes, automatic exposure, after
+// kHybridFrames static frames) against a converged path-traced reference of the same scene, per
+// effect: mean luminance within kEnergyTolerance, and HDR-FLIP and relMSE within frozen budgets. The masks come from
+// the hybrid's own G-buffer AOVs (tests/fidelity/masks.h: shadowed, reflective, refractive, rest, plus the whole
+// image), the errors from the real `rayster compare --mask --json`, and the budgets are frozen in
+// tests/fidelity/budgets.json. The noise floor is the same comparison between two references rendered with different
+// seeds: a budget below it could not tell a renderer bug from Monte Carlo noise.
 //
 // The references are committed EXRs (tests/fidelity/refs/, README.md there has the command): at
 // thousands of samples they take minutes each on lavapipe, far more than a test may.
@@ -31,6 +32,15 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 constexpr int kWidth = 96, kHeight = 72;
+// Energy: the hybrid's mean luminance over each mask against the reference's. The target (issue 14)
+// is ±kEnergyTolerance everywhere. A mask that met it when the budgets were frozen must keep
+// meeting it; one that did not (a known gap: docs/fidelity.md lists them and why) is held to its
+// frozen error plus kEnergyGapSlack, so it can only get better, and is printed as a gap.
+constexpr double kEnergyTolerance = 0.05;
+constexpr double kEnergyGapSlack = 0.02;
+// Masks smaller than this carry no energy check: the mean of a few dozen pixels of a path-traced
+// reference is still noisy where caustics and fireflies land.
+constexpr size_t kMinEnergyPixels = 150;
 constexpr int kHybridFrames = 32;  // static camera: TAA and the denoisers' histories have settled by then
 constexpr int kHybridSeed = 1;     // with --primary raster: "auto" picks by timing, so its image could vary
 // A budget is the measured error times this: room for driver and denoiser jitter, not for a bug.
@@ -42,6 +52,26 @@ using fidelity::buildMasks;
 using fidelity::kMaskNames;
 
 fs::path fidelityDir() { return fs::path(RAYSTER_SOURCE_DIR) / "tests" / "fidelity"; }
+// The scenes: built-in ones, and the Blender-exported corpus (assets/corpus, docs/corpus.md).
+std::string sceneSource(const std::string& scene) {
+  if (scene == "whitted" || scene == "cornell" || scene == "spheres") return "builtin:" + scene;
+  const fs::path corpus = fs::path(RAYSTER_SOURCE_DIR) / "assets" / "corpus";
+  return (corpus / (scene + (scene == "product" || scene == "foliage" ? ".json" : ".glb"))).string();
+}
+
+// Mean Rec. 709 luminance of `img` over the pixels `mask` covers.
+double maskedLuminance(const ImageF& img, const Image8& mask) {
+  double sum = 0.0;
+  size_t n = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      if (mask.pixel(x, y)[0] == 0) continue;
+      const float* p = img.pixel(x, y);
+      sum += 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+      ++n;
+    }
+  return n ? sum / double(n) : 0.0;
+}
 fs::path budgetsPath() { return fidelityDir() / "budgets.json"; }
 fs::path referencePath(const std::string& scene, int seed) {
   return fidelityDir() / "refs" / fmt::format("{}-seed{}.exr", scene, seed);
@@ -103,12 +133,11 @@ void checkScene(const std::string& scene) {
     refs[seed - 1] = std::move(ref).value();
   }
 
-  // The hybrid frame, denoised and TAA-resolved, with the AOVs the masks are built from. At the unit
-  // exposure the budgets were frozen at: the firefly clamps work relative to the exposure, so
-  // another exposure is another (not a worse or better) measurement.
-  analytic::Rendered hybrid = analytic::renderHdr(
-      dir, "hybrid", "builtin:" + scene, kWidth, kHeight, kHybridFrames, "depth,material,shadow-denoised",
-      fmt::format("--seed {} --taa on --primary raster --exposure 0", kHybridSeed));
+  // The hybrid frame with its default settings (automatic exposure, probes), denoised and
+  // TAA-resolved, with the AOVs the masks are built from.
+  analytic::Rendered hybrid = analytic::renderHdr(dir, "hybrid", sceneSource(scene), kWidth, kHeight, kHybridFrames,
+                                                  "depth,material,shadow-denoised",
+                                                  fmt::format("--seed {} --taa on --primary raster", kHybridSeed));
   ASSERT_FALSE(hybrid.hdr.empty());
   ASSERT_EQ(hybrid.aovs.size(), 3u);
   EXPECT_NE(hybrid.hdr.rgba, refs[0].rgba) << "the hybrid frame is not the reference";
@@ -143,6 +172,33 @@ void checkScene(const std::string& scene) {
 
     json& e = entry[name];
     e["pixels"] = pixels;
+    // Energy: the mean luminance against the reference, beside the references' own difference.
+    const double refMean = maskedLuminance(refs[0], mask);
+    ASSERT_GT(refMean, 0.0) << scene << "/" << name;
+    const double energy = maskedLuminance(hybrid.hdr, mask) / refMean - 1.0,
+                 energyFloor = maskedLuminance(refs[1], mask) / refMean - 1.0;
+    const bool checked = pixels >= kMinEnergyPixels;
+    const bool meets = std::abs(energy) <= kEnergyTolerance;
+    e["energy"] = {{"measured", energy},
+                   {"noiseFloor", energyFloor},
+                   {"checked", checked},
+                   {"meetsTarget", meets},
+                   {"budget", meets ? kEnergyTolerance : std::abs(energy) + kEnergyGapSlack}};
+    std::printf("[fidelity] %-8s %-10s %5zu pixels  energy   hybrid %+.4f  references %+.4f%s\n", scene.c_str(),
+                name.c_str(), pixels, energy, energyFloor,
+                !checked ? "  (too few pixels)"
+                : meets  ? ""
+                         : "  KNOWN GAP: outside the ±5 % target");
+    if (checked && !bless) {
+      EXPECT_LE(std::abs(energyFloor), kEnergyTolerance / 2)
+          << scene << "/" << name << ": the references differ by " << energyFloor << "; render them with more samples";
+      ASSERT_TRUE(budgeted && (*frozen)[name].contains("energy"))
+          << scene << "/" << name << ": no frozen energy budget";
+      const json& b = (*frozen)[name]["energy"];
+      const double budget = b["meetsTarget"].get<bool>() ? kEnergyTolerance : b["budget"].get<double>();
+      EXPECT_LE(std::abs(energy), budget) << scene << "/" << name << ": mean luminance " << energy
+                                          << " from the path tracer's, over its budget " << budget;
+    }
     for (const auto& metric : kMetrics) {
       const double value = error[metric].get<double>(), noise = floor[metric].get<double>();
       std::printf("[fidelity] %-8s %-10s %5zu pixels  %-8s hybrid %.5f  noise floor %.5f", scene.c_str(), name.c_str(),
@@ -178,6 +234,12 @@ void checkScene(const std::string& scene) {
 TEST(Fidelity, Whitted) { checkScene("whitted"); }
 TEST(Fidelity, Cornell) { checkScene("cornell"); }
 TEST(Fidelity, Spheres) { checkScene("spheres"); }
+// The Blender corpus (docs/corpus.md): a room lit by one point light, an atrium lit through its
+// roof by the sun, a product shot under an HDR environment, alpha-masked foliage under sun and sky.
+TEST(Fidelity, BlenderRoom) { checkScene("room"); }
+TEST(Fidelity, BlenderAtrium) { checkScene("atrium"); }
+TEST(Fidelity, BlenderProduct) { checkScene("product"); }
+TEST(Fidelity, BlenderFoliage) { checkScene("foliage"); }
 
 }  // namespace
 }  // namespace rayster::test
