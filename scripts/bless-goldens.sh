@@ -6,5 +6,5 @@ cd "$(dirname "$0")/.."
 cmake -S . -B build -G Ninja >/dev/null
 ninja -C build rayster rayster_tests
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
-RAYSTER_BLESS=1 ./build/tests/rayster_tests --gtest_filter='Render*:Scenes*:EffectGoldens*:WhittedRun*'
+RAYSTER_BLESS=1 ./build/tests/rayster_tests --gtest_filter='Render*:Scenes*:EffectGoldens*:WhittedRun*:RasterMode.Golden*'
 git status --short tests/golden

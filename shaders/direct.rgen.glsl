@@ -120,6 +120,8 @@ void main() {
   s.envOcclusion = 1.0;  // direct light only: AO never applies to it
   s.useIndirect = false;
   s.useIndirectSpecular = false;
+  s.sunHighlights = true;
+  s.highlightWiden = 0.0;
   s.indirectSpecular = vec3(0.0);
   s.indirect = vec3(0.0);
   uint rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kShadowStream);

@@ -38,6 +38,19 @@ void skipLightVisibility(inout uint rng) {}
 
 #include "lib/shading.glsl"
 
+// Half the largest angle between this pixel's shading normal and its four neighbours' (radians,
+// at most 0.5): how far the normal turns across the pixel (ShadingInput::highlightWiden).
+float normalSpread(ivec2 px, vec3 n) {
+  float cosMin = 1.0;
+  const ivec2 offsets[4] = ivec2[](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+  for (int k = 0; k < 4; ++k) {
+    ivec2 q = clamp(px + offsets[k], ivec2(0), ivec2(frame.size) - 1);
+    if (isBackground(texelFetch(depthTex, q, 0).r)) continue;
+    cosMin = min(cosMin, dot(n, octDecode(texelFetch(normalTex, q, 0).xy)));
+  }
+  return min(0.5 * acos(clamp(cosMin, -1.0, 1.0)), 0.5);
+}
+
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(px), frame.size))) return;
@@ -70,6 +83,8 @@ void main() {
   s.envOcclusion = texelFetch(aoTex, ivec3(px, int(frame.aoLayer)), 0).r;
   s.useIndirect = (frame.effectFlags & kEffectIndirect) != 0u;
   s.indirect = s.useIndirect ? texelFetch(indirectTex, px, 0).rgb : vec3(0.0);
+  s.sunHighlights = true;
+  s.highlightWiden = normalSpread(px, s.n);
   s.useIndirectSpecular = (frame.effectFlags & kEffectIndirectSpecular) != 0u;
   s.indirectSpecular = s.useIndirectSpecular ? texelFetch(indirectSpecularTex, px, 0).rgb : vec3(0.0);
   uint rng = 0u;  // visibility comes from the shadow image: no random numbers needed here

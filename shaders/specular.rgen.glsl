@@ -180,6 +180,8 @@ void main() {
     // With probes, a hit's diffuse indirect light is theirs (as at G-buffer pixels), not ambient + SH.
     s.useIndirect = (grid.flags & kProbeLookup) != 0u;
     s.indirect = s.useIndirect ? probeIrradiance(grid, s.p, s.n, s.v) : vec3(0.0);
+    s.sunHighlights = false;
+    s.highlightWiden = 0.0;
     s.useIndirectSpecular = s.useIndirect && !tracedSpecular(s.roughness, s.transmission);
     s.indirectSpecular = s.useIndirectSpecular ? probeIrradiance(grid, s.p, reflect(-s.v, s.n), s.v) : vec3(0.0);
     // A glossy lobe averages its hits over frames and pixels anyway: there one light picked by

@@ -93,6 +93,17 @@ SurfaceBsdf makeBsdf(vec3 baseColor, float metallic, float roughness, vec4 specu
 // BRDF × cosine for light arriving from l. `alphaWiden` widens the lobe for lights of finite size
 // (energy-conserving: GGX stays normalised), so a sphere light's highlight on a near-mirror has the
 // light's size rather than a pin-point.
+// The specular lobe of evalBsdfCos() alone.
+vec3 evalSpecularCos(SurfaceBsdf s, vec3 n, vec3 v, vec3 l, float alphaWiden) {
+  float nl = dot(n, l);
+  float nv = max(dot(n, v), 1e-4);
+  if (nl <= 0.0) return vec3(0.0);
+  vec3 h = normalize(v + l);
+  float a = clamp(s.alpha + alphaWiden, s.alpha, 1.0);
+  float a2 = a * a;
+  return fresnelSchlick(s.f0, s.f90, max(dot(v, h), 0.0)) * (ggxD(max(dot(n, h), 0.0), a2) * smithV(nl, nv, a2)) * nl;
+}
+
 vec3 evalBsdfCos(SurfaceBsdf s, vec3 n, vec3 v, vec3 l, float alphaWiden) {
   float nl = dot(n, l);
   float nv = max(dot(n, v), 1e-4);

@@ -30,6 +30,15 @@ struct ShadingInput {
   vec3 indirect;       // irradiance E of the diffuse indirect light, when useIndirect
   bool useIndirectSpecular;  // the untraced specular light is indirectSpecular / π (probes), not the environment's
   vec3 indirectSpecular;     // irradiance E about the mirror direction reflect(−v, n)
+  // The traced share's highlight of sun lights, whose disks no traced ray sees (their rays miss to
+  // the environment), added here: the G-buffer's surfaces (lighting, direct.rgen); not the bounce
+  // loop's hits, where it would cost a shadow ray per mirror hit.
+  bool sunHighlights;
+  // And how much wider than the surface's own roughness that highlight is drawn (a GGX α added):
+  // half the angle the shading normal turns across a pixel, so a highlight smaller than a pixel
+  // (a mirror sphere's reflection of the sun) is spread over the pixel, not hit or missed by its
+  // centre. 0 at the bounce loop's hits.
+  float highlightWiden;
 };
 
 struct ShadingTerms {
@@ -66,10 +75,10 @@ vec3 shadeLight(ShadingInput s, ShadingTerms t, uint i, inout uint rng) {
   // The traced reflection already sees the light's visible shape: only the diffuse layer for its share.
   float nl = max(dot(s.n, l), 0.0);
   vec3 f = t.w * (1.0 - t.fvDiffuse) * t.bsdf.diffuse / kPi * nl;
-  if (t.w < 1.0) {
-    float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
-    f += (1.0 - t.w) * evalBsdfCos(t.bsdf, s.n, s.v, l, 0.5 * widen);
-  }
+  float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
+  if (t.w < 1.0) f += (1.0 - t.w) * evalBsdfCos(t.bsdf, s.n, s.v, l, 0.5 * widen);
+  if (t.w > 0.0 && s.sunHighlights && light.type == kLightDirectional)
+    f += t.w * evalSpecularCos(t.bsdf, s.n, s.v, l, 0.5 * widen + s.highlightWiden);
   // Mirror, metal and glass hits of the bounce loop have no untraced lobe: no shadow ray for them
   // (on whitted's glass bunny every bounce used to trace one for nothing).
   if (all(equal(f, vec3(0.0)))) {

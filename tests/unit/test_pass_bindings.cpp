@@ -45,10 +45,10 @@ TEST(SpirvReflect, LightingDeclaresItsBindingsByName) {
   ASSERT_NE(textures, nullptr);
   EXPECT_EQ(textures->count, 0u);  // runtime-sized
   EXPECT_EQ(l.pushConstantBytes, 0u);
-  // Binding numbers 0..12 of set 0, each once.
+  // Binding numbers 0..13 of set 0, each once.
   uint32_t set0 = 0;
   for (const rhi::ShaderBinding& b : l.bindings) set0 += b.set == 0 ? 1u : 0u;
-  EXPECT_EQ(set0, 13u);
+  EXPECT_EQ(set0, 14u);
 }
 
 TEST(SpirvReflect, RayTracingStagesAndReadWriteImages) {
