@@ -13,6 +13,8 @@ namespace rayster::render {
 
 // Passes used only here, declared next to their one caller.
 graph::ImageHandle traceSkyVisibility(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
+graph::ImageHandle drawProbeView(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
+                                 graph::ImageHandle hdr, const ProbeLookup& probes);
 graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                         const ProbeFrame& frame, ProbeLookup& lookup);
 
@@ -268,6 +270,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   }
   o.hdr =
       shadeLighting(graph, in, gb, {o.shadow, o.specular, o.ao, o.indirect, direct, probeLookup.specularIrradiance});
+  if (probes && passSwitchOn(s, "probe-view")) o.hdr = drawProbeView(graph, in, gb, o.hdr, probeLookup);
   return o;
 }
 

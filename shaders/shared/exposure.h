@@ -17,7 +17,7 @@ namespace rayster::gpu {
 
 // Bin 0 counts pixels darker than 2^kExposureMinLog2 cd/m² (black: sky-less backgrounds, unlit
 // corners; the meter leaves them out); bins 1 .. kExposureBins-1 split log2 luminance
-// [kExposureMinLog2, kExposureMaxLog2] evenly (0.16 EV each), the last also taking everything
+// [kExposureMinLog2, kExposureMaxLog2] evenly (0.23 EV each), the last also taking everything
 // brighter (and inf).
 RAYSTER_CONST uint kExposureBins = 256u;
 // The buffer holds two histograms: the scene's surfaces first, then the background (pixels where
@@ -25,8 +25,15 @@ RAYSTER_CONST uint kExposureBins = 256u;
 // meters the subject and not the sky, unless they cover less than kExposureMinSurface of the frame.
 RAYSTER_CONST uint kExposureHistograms = 2u;
 RAYSTER_CONST float kExposureMinSurface = 0.05;
-RAYSTER_CONST float kExposureMinLog2 = -16.0;  // 1.5e-5 cd/m²: far below starlight
-RAYSTER_CONST float kExposureMaxLog2 = 24.0;   // 1.7e7 cd/m²: past the sun's disc at 120 000 lux
+// 6e-8 cd/m²: far below starlight, and below the shadows of a scene lit by 1 lux (at 2^-16 they
+// fell into bin 0, which the meter leaves out, and a 1 lux scene metered 0.4 EV brighter than the
+// same scene at 100 000 lux).
+RAYSTER_CONST float kExposureMinLog2 = -24.0;
+// 1.7e10 cd/m²: the sun's disc at 120 000 lux is 1.8e9, and a highlight on a dark surface counts
+// up to 4.5× its luminance (the meter's albedo normalisation). A range that clipped the highlights
+// of a bright sun (2^24 did) made the reading of a scene depend on its scale: a 100 000 lux scene
+// metered 0.35 EV darker than the same scene at 1 lux.
+RAYSTER_CONST float kExposureMaxLog2 = 34.0;
 
 struct ExposurePush {
   uvec2 size;

@@ -128,6 +128,33 @@ TEST_F(GiProbes, MultipleBouncesSettleWithinThirtyFramesOfACut) {
   EXPECT_LT(at4 / settled, 1.03) << "no overshoot";
 }
 
+// The debug view (--probe-view on): the probes drawn into the frame as small spheres; off by
+// default and then not recorded at all. Same seed, same everything else: the two images differ
+// only where a probe sphere is, a handful of small discs, brighter or darker than what is behind.
+TEST_F(GiProbes, ProbeViewDrawsTheProbesIntoTheFrame) {
+  const std::string args = " --frames 1 --taa off --primary raster --exposure 0 --seed 5 --memory-report";
+  auto renderPng = [&](const std::string& name, const std::string& extra) {
+    const auto out = dir_ / (name + ".png");
+    RunResult r = runRayster("render builtin:cornell --size 96x72" + args + extra + " -o " + out.string());
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    auto img = readPng(out);
+    EXPECT_TRUE(img.ok());
+    return std::make_pair(r.output, img.ok() ? std::move(*img) : Image8{});
+  };
+  const auto [offLog, off] = renderPng("off", "");
+  const auto [onLog, on] = renderPng("on", " --probe-view on");
+  ASSERT_FALSE(off.rgba.empty() || on.rgba.empty());
+  EXPECT_EQ(offLog.find("gi-probe-view"), std::string::npos) << "off means gone";
+  EXPECT_NE(onLog.find("gi-probe-view"), std::string::npos) << onLog;
+  size_t changed = 0;
+  for (size_t i = 0; i < on.rgba.size(); i += 4)
+    changed += std::abs(int(on.rgba[i]) - int(off.rgba[i])) + std::abs(int(on.rgba[i + 1]) - int(off.rgba[i + 1])) > 24;
+  const size_t pixels = on.rgba.size() / 4;
+  std::printf("probe view: %zu of %zu pixels changed\n", changed, pixels);
+  EXPECT_GT(changed, pixels / 200) << "the probes are in view";
+  EXPECT_LT(changed, pixels / 3) << "small spheres, not the whole frame";
+}
+
 // Relocation and classification (probe_classify.comp): a solid block in the middle of a floor holds
 // probes of the fitted grid (docs/techniques.md §16b: 8 × 3 × 8 over these bounds, x and z
 // probes 3 and 4 at ±0.55 inside the block's ±1). Each of them ends inactive or moved out of it;
