@@ -9,7 +9,7 @@
 
 namespace rayster::render {
 namespace {
-const PassSetting kSwitch{passSwitch("probe-view", "Debug",
+const PassSetting kSwitch{passSwitch("probe-view", "Effects",
                                      "Draw the irradiance probes into the image (--gi probes): spheres lit by "
                                      "each probe's irradiance, inactive probes dark red",
                                      false)};
