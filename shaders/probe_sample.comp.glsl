@@ -31,8 +31,9 @@ void main() {
     vec3 p = worldFromDepth(frame.worldFromClip, uv, depth);
     vec3 n = octDecode(texelFetch(normalTex, px, 0).xy);
     vec3 v = normalize(frame.cameraPosition.xyz - p);
-    e = probeIrradiance(grid, p, n, v);
-    es = probeIrradiance(grid, p, reflect(-v, n), v);
+    // The mirror direction's lookup shares the eight probes' weights (the point's, not the
+    // direction's: the same visibility test).
+    probeIrradiance2(grid, p, n, v, true, reflect(-v, n), e, es);
   }
   imageStore(outIrradiance, px, vec4(e, 1.0));
   imageStore(outSpecularIrradiance, px, vec4(es, 1.0));

@@ -179,11 +179,12 @@ void main() {
     s.envOcclusion = 1.0;  // no AO at hits
     // With probes, a hit's diffuse indirect light is theirs (as at G-buffer pixels), not ambient + SH.
     s.useIndirect = (grid.flags & kProbeLookup) != 0u;
-    s.indirect = s.useIndirect ? probeIrradiance(grid, s.p, s.n, s.v) : vec3(0.0);
     s.sunHighlights = false;
     s.highlightWiden = 0.0;
     s.useIndirectSpecular = s.useIndirect && !tracedSpecular(s.roughness, s.transmission);
-    s.indirectSpecular = s.useIndirectSpecular ? probeIrradiance(grid, s.p, reflect(-s.v, s.n), s.v) : vec3(0.0);
+    s.indirect = s.indirectSpecular = vec3(0.0);
+    if (s.useIndirect)
+      probeIrradiance2(grid, s.p, s.n, s.v, s.useIndirectSpecular, reflect(-s.v, s.n), s.indirect, s.indirectSpecular);
     // A glossy lobe averages its hits over frames and pixels anyway: there one light picked by
     // importance (divided by its probability) stands in for the loop over all lights.
     radiance += beta * shadeSurface(s, true, glossy || frame.manyLights != 0u, rng);

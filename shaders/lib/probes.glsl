@@ -60,10 +60,12 @@ vec4 probeData(ProbeGrid g, uint probe) {
   return (g.flags & kProbeDataValid) != 0u ? texelFetch(probeDataTex, ivec2(probe, 0), 0) : vec4(0.0, 0.0, 0.0, 1.0);
 }
 
-// Irradiance E at p (shading normal n, direction to the viewer v) from the eight probes of its grid
-// cell. Each probe counts with its trilinear weight, a smooth back-face weight (probes behind the
-// surface count little) and the Chebyshev bound of being visible from the probe's distance moments.
-vec3 probeIrradiance(ProbeGrid g, vec3 p, vec3 n, vec3 v) {
+// Irradiance at p (shading normal n, direction to the viewer v) from the eight probes of its grid
+// cell, in the directions n (e) and r (er: probeIrradiance2 only, the mirror direction for the
+// untraced specular light; one set of weights for both). Each probe counts with its trilinear
+// weight, a smooth back-face weight (probes behind the surface count little) and the Chebyshev
+// bound of being visible from the probe's distance moments.
+void probeIrradiance2(ProbeGrid g, vec3 p, vec3 n, vec3 v, bool withR, vec3 r, out vec3 e, out vec3 er) {
   vec2 irradianceSize = vec2(textureSize(probeIrradianceTex, 0));
   vec2 visibilitySize = vec2(textureSize(probeVisibilityTex, 0));
   float minSpacing = min(g.spacing.x, min(g.spacing.y, g.spacing.z));
@@ -71,7 +73,7 @@ vec3 probeIrradiance(ProbeGrid g, vec3 p, vec3 n, vec3 v) {
   vec3 cellPos = clamp((biased - g.origin) / g.spacing, vec3(0.0), vec3(g.counts - 1u));
   ivec3 base = min(ivec3(floor(cellPos)), ivec3(g.counts) - 2);
   vec3 alpha = clamp(cellPos - vec3(base), 0.0, 1.0);
-  vec3 sum = vec3(0.0);
+  vec3 sum = vec3(0.0), sumR = vec3(0.0);
   float weightSum = 0.0;
   for (int i = 0; i < 8; ++i) {
     ivec3 offset = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
@@ -97,11 +99,19 @@ vec3 probeIrradiance(ProbeGrid g, vec3 p, vec3 n, vec3 v) {
     weight = max(weight, 1e-6);
     // Crush tiny weights (they would tint the result without adding light).
     if (weight < 0.2) weight *= weight * weight / (0.04);
-    vec3 e = texture(probeIrradianceTex, probeAtlasUv(g, probe, n, kProbeIrradianceTexels, irradianceSize)).rgb;
-    sum += weight * e;
+    sum += weight * texture(probeIrradianceTex, probeAtlasUv(g, probe, n, kProbeIrradianceTexels, irradianceSize)).rgb;
+    if (withR)
+      sumR += weight * texture(probeIrradianceTex, probeAtlasUv(g, probe, r, kProbeIrradianceTexels, irradianceSize)).rgb;
     weightSum += weight;
   }
-  return weightSum > 0.0 ? sum / weightSum : vec3(0.0);
+  e = weightSum > 0.0 ? sum / weightSum : vec3(0.0);
+  er = weightSum > 0.0 ? sumR / weightSum : vec3(0.0);
+}
+
+vec3 probeIrradiance(ProbeGrid g, vec3 p, vec3 n, vec3 v) {
+  vec3 e, unused;
+  probeIrradiance2(g, p, n, v, false, n, e, unused);
+  return e;
 }
 #endif
 
