@@ -255,21 +255,26 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
                                lightsPerHit());
   }
   // Probes first: the reflection bounce loop lights its hits from them too.
+  // With --gi path they run too: the one-bounce rays' hits take their irradiance (every later
+  // bounce); the G-buffer's lookup (gi-probe-sample) is then unused, and the graph culls it.
   ProbeLookup probeLookup;
-  if (probes)
-    o.indirectRaw = o.indirect =
+  if (indirect) {
+    const graph::ImageHandle e =
         traceProbeIrradiance(graph, in, gb, {frameIndex, s.seed, exposure.ratio(), moving}, probeLookup);
+    if (probes) o.indirectRaw = o.indirect = e;
+  }
   if (specularPass) {
     o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit(), probeLookup);
     o.specular = svgf("specular", o.specularRaw);
   }
   const graph::ImageHandle direct = manyLights ? svgf("direct", traceDirect(graph, in, gb)) : black;
   if (indirect && !probes) {
-    o.indirectRaw = traceIndirect(graph, in, gb, surface.current, indirectQuarter(s));
+    o.indirectRaw = traceIndirect(graph, in, gb, surface.current, indirectQuarter(s), probeLookup);
     o.indirect = svgf("indirect", o.indirectRaw);
   }
-  o.hdr =
-      shadeLighting(graph, in, gb, {o.shadow, o.specular, o.ao, o.indirect, direct, probeLookup.specularIrradiance});
+  o.hdr = shadeLighting(
+      graph, in, gb,
+      {o.shadow, o.specular, o.ao, o.indirect, direct, probes ? probeLookup.specularIrradiance : graph::ImageHandle{}});
   if (probes && passSwitchOn(s, "probe-view")) o.hdr = drawProbeView(graph, in, gb, o.hdr, probeLookup);
   return o;
 }

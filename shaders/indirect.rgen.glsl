@@ -15,12 +15,14 @@
 #include "lib/hit_surface.glsl"
 #include "lib/brdf.glsl"
 #include "lib/environment.glsl"
+#include "shared/probes.h"
 #endif
 
 // One-bounce indirect diffuse from the G-buffer (docs/techniques.md §16): one cosine-weighted ray about
 // the shading normal per pixel per frame. A hit is shaded with its emission, direct light from one
-// light picked by importance (shadow ray, divided by the pick probability) and the environment's
-// SH irradiance (no AO at hits); a miss sees the environment.
+// light picked by importance (shadow ray, divided by the pick probability) and the probes'
+// irradiance (with --gi path the probes still run for this: every later bounce), or without probes
+// the environment's SH irradiance (no AO at hits); a miss sees the environment.
 // Output (RGBA16F): rgb = E = π·L, one sample of the irradiance, demodulated (no albedo): lighting
 // applies albedo/π·E. Rays see shadow casters only, so a light's visible shape (which the lighting
 // pass already counts as direct light) is not counted again. Background and indirect off write 0.
@@ -45,6 +47,12 @@ layout(location = 0) rayPayloadEXT uint hitT;  // raw_t.rchit: the hit distance'
 #else
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D outIndirect;
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
+// The probes (this frame's atlases, render/passes/gi_probes.cpp) light the bounce's hits when
+// grid.flags has kProbeLookup; else 1×1 stand-ins, never read.
+layout(set = 0, binding = 5) uniform sampler2D probeIrradianceTex;
+layout(set = 0, binding = 6) uniform sampler2D probeVisibilityTex;
+layout(set = 0, binding = 7) uniform sampler2D probeDataTex;
+layout(push_constant, scalar) uniform Push { ProbeGrid grid; };
 #endif
 layout(location = 1) rayPayloadEXT uint visible;
 
@@ -106,6 +114,7 @@ void main() {
 #else
 
 #include "lib/one_light.glsl"
+#include "lib/probes.glsl"
 
 void main() {
   ivec2 px = indirectPixel(gl_LaunchIDEXT.xy);  // at quarter rate, its 2×2 block's pixel of this frame
@@ -130,8 +139,11 @@ void main() {
     SurfaceBsdf bsdf = makeBsdf(srgbToLinear(gb.albedo.rgb), gb.material.g, gb.material.r, gb.specular, m.ior);
     bsdf.diffuse *= 1.0 - gb.material.b;
     radiance = gb.emissive.rgb + directFromOneLight(bsdf, sp.position, hn, hng, -dir, rng);
-    vec3 environmentDiffuse = environmentIrradiance(hn) + frame.ambient.rgb * kPi;
-    radiance += bsdf.diffuse / kPi * environmentDiffuse * gb.albedo.a;
+    // The hit's own diffuse light: the probes' (every later bounce), else the environment's SH
+    // irradiance and the ambient term.
+    vec3 hitIrradiance = (grid.flags & kProbeLookup) != 0u ? probeIrradiance(grid, sp.position, hn, -dir)
+                                                           : environmentIrradiance(hn) + frame.ambient.rgb * kPi;
+    radiance += bsdf.diffuse / kPi * hitIrradiance * gb.albedo.a;
   }
   // E = π·L for a cosine-weighted sample; clamp rare fireflies to a bright but finite value.
   imageStore(outIndirect, px, vec4(min(kPi * radiance, vec3(256.0)), 1.0));

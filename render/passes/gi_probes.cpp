@@ -22,7 +22,7 @@ namespace {
 const PassSetting kGi{
     passChoice("gi", "Effects",
                "Diffuse indirect light where --indirect turns it on: probes (irradiance probes, multiple "
-               "bounces) or path (one denoised bounce ray per pixel)",
+               "bounces) or path (one denoised bounce ray per pixel, its hits lit by the probes)",
                {"path", "probes"}, "probes")};
 
 constexpr uint32_t kMaxProbesPerAxis = 8;   // on the scene's longest axis

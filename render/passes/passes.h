@@ -125,8 +125,10 @@ graph::ImageHandle traceAo(graph::RenderGraph& graph, const FrameInputs& in, con
 // FrameConstants::effectFlags lacks kEffectIndirect. `quarter` (FrameConstants::effectFlags has
 // kEffectIndirect | kEffectIndirectQuarter): one traced pixel per 2×2 block ((w+1)/2 × (h+1)/2
 // launch), the rest filled by "rt-indirect-fill" guided by `surface` (the denoisers' surface image).
+// `probes` (valid with --gi path too): the bounce's hits take the probes' irradiance for their
+// diffuse light, so the one denoised bounce carries the later bounces as well.
 graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                 graph::ImageHandle surface, bool quarter);
+                                 graph::ImageHandle surface, bool quarter, const ProbeLookup& probes);
 // rt-indirect's launch: the image, or at quarter rate one invocation per 2×2 block; and its size in invocations.
 VkExtent2D indirectLaunchSize(VkExtent2D size, bool quarter);
 uint64_t indirectLaunch(VkExtent2D size, bool quarter);

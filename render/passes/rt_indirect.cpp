@@ -17,7 +17,7 @@ uint64_t indirectLaunch(VkExtent2D size, bool quarter) {
 }
 
 graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                 graph::ImageHandle surface, bool quarter) {
+                                 graph::ImageHandle surface, bool quarter, const ProbeLookup& probes) {
   graph::ImageHandle out =
       graph.createImage("indirect-raw",
                         {kRadianceFormat, in.size.width, in.size.height, 1,
@@ -36,9 +36,17 @@ graph::ImageHandle traceIndirect(graph::RenderGraph& graph, const FrameInputs& i
       [&](graph::PassBuilder& b) {
         b.pipeline(pipe).bind("tlas", in.tlas).bind("depthTex", gb.depth).bind("normalTex", gb.normals);
         b.bind("outIndirect", out);
+        // Without probes any image stands in (kProbeLookup unset: never read).
+        const bool lookup = probes.irradiance.valid();
+        b.bind("probeIrradianceTex", lookup ? probes.irradiance : gb.albedo, in.linear.handle());
+        b.bind("probeVisibilityTex", lookup ? probes.visibility : gb.material, in.linear.handle());
+        b.bind("probeDataTex", lookup ? probes.data : gb.material);
         b.rays(indirectLaunch(in.size, quarter) * 2);  // a bounce ray and a shadow ray at its hit
       },
-      [&pipe, launch](graph::PassContext& pc) { pipe.trace(pc.cmd, launch.width, launch.height); });
+      [&pipe, launch, grid = probes.grid](graph::PassContext& pc) {
+        pc.push(grid);
+        pipe.trace(pc.cmd, launch.width, launch.height);
+      });
   if (!quarter) return out;
   const rhi::Pipeline& fill = in.pipelines.compute("indirect_fill.comp");
   graph.addPass(
