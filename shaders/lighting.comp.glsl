@@ -84,7 +84,7 @@ void main() {
   s.useIndirect = (frame.effectFlags & kEffectIndirect) != 0u;
   s.indirect = s.useIndirect ? texelFetch(indirectTex, px, 0).rgb : vec3(0.0);
   s.sunHighlights = true;
-  s.highlightWiden = normalSpread(px, s.n);
+  s.highlightWiden = s.tracedWeight > 0.0 ? normalSpread(px, s.n) : 0.0;  // used for the traced share only
   s.useIndirectSpecular = (frame.effectFlags & kEffectIndirectSpecular) != 0u;
   s.indirectSpecular = s.useIndirectSpecular ? texelFetch(indirectSpecularTex, px, 0).rgb : vec3(0.0);
   uint rng = 0u;  // visibility comes from the shadow image: no random numbers needed here

@@ -92,8 +92,7 @@ SurfaceBsdf makeBsdf(vec3 baseColor, float metallic, float roughness, vec4 specu
 
 // BRDF × cosine for light arriving from l. `alphaWiden` widens the lobe for lights of finite size
 // (energy-conserving: GGX stays normalised), so a sphere light's highlight on a near-mirror has the
-// light's size rather than a pin-point.
-// The specular lobe of evalBsdfCos() alone.
+// light's size rather than a pin-point. evalSpecularCos: the specular lobe alone.
 vec3 evalSpecularCos(SurfaceBsdf s, vec3 n, vec3 v, vec3 l, float alphaWiden) {
   float nl = dot(n, l);
   float nv = max(dot(n, v), 1e-4);
@@ -106,17 +105,10 @@ vec3 evalSpecularCos(SurfaceBsdf s, vec3 n, vec3 v, vec3 l, float alphaWiden) {
 
 vec3 evalBsdfCos(SurfaceBsdf s, vec3 n, vec3 v, vec3 l, float alphaWiden) {
   float nl = dot(n, l);
-  float nv = max(dot(n, v), 1e-4);
   if (nl <= 0.0) return vec3(0.0);
-  vec3 h = normalize(v + l);
-  float nh = max(dot(n, h), 0.0);
-  float vh = max(dot(v, h), 0.0);
-  float a = clamp(s.alpha + alphaWiden, s.alpha, 1.0);
-  float a2 = a * a;
-  vec3 f = fresnelSchlick(s.f0, s.f90, vh);
-  vec3 spec = f * (ggxD(nh, a2) * smithV(nl, nv, a2));
+  float vh = max(dot(v, normalize(v + l)), 0.0);
   vec3 diff = (1.0 - fresnelSchlick(vec3(s.diffuseF0), vec3(s.diffuseF90), vh)) * s.diffuse / kPi;
-  return (diff + spec) * nl;
+  return diff * nl + evalSpecularCos(s, n, v, l, alphaWiden);
 }
 
 #endif
