@@ -7,8 +7,10 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "render/deform.h"
 #include "render/passes/cull.h"
 #include "rhi/context.h"
+#include "scene/skinning.h"
 #include "scene/tangents.h"
 #include "shaders/shared/types.h"
 
@@ -69,19 +71,33 @@ Sidedness sidedness(const scene::Scene& scene, const scene::Mesh& mesh) {
                                                  : Sidedness::Mixed;
 }
 
-// Triangles: vertices (with tangents) and indices; the BLAS reads positions at offset 0.
-void addTriangles(rhi::Context& ctx, const scene::Scene& scene, const scene::Primitive& src, bool mixedSides,
-                  GpuScene& gs, std::vector<gpu::GeometryRecord>& rows, std::vector<rhi::BlasGeometry>& blas) {
-  scene::Primitive prim = src;
-  if (prim.tangents.size() != prim.positions.size()) scene::generateTangents(prim);
-  std::vector<gpu::Vertex> vertices(prim.positions.size());
-  for (size_t i = 0; i < vertices.size(); ++i) {
-    vertices[i].position = prim.positions[i];
-    vertices[i].normal = prim.normals.empty() ? glm::vec3(0, 1, 0) : prim.normals[i];
-    vertices[i].tangent = prim.tangents[i];
-    vertices[i].uv0 = prim.uvs.empty() ? glm::vec2(0) : prim.uvs[i];
-    vertices[i].uv1 = prim.uvs1.empty() ? vertices[i].uv0 : prim.uvs1[i];
+}  // namespace
+
+std::vector<gpu::Vertex> gpuVertices(const scene::Primitive& src) {
+  scene::Primitive generated;
+  const scene::Primitive* prim = &src;
+  if (src.tangents.size() != src.positions.size()) {
+    generated = src;
+    scene::generateTangents(generated);
+    prim = &generated;
   }
+  std::vector<gpu::Vertex> vertices(prim->positions.size());
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    vertices[i].position = prim->positions[i];
+    vertices[i].normal = prim->normals.empty() ? glm::vec3(0, 1, 0) : prim->normals[i];
+    vertices[i].tangent = prim->tangents[i];
+    vertices[i].uv0 = prim->uvs.empty() ? glm::vec2(0) : prim->uvs[i];
+    vertices[i].uv1 = prim->uvs1.empty() ? vertices[i].uv0 : prim->uvs1[i];
+  }
+  return vertices;
+}
+
+namespace {
+
+// Triangles: vertices (with tangents) and indices; the BLAS reads positions at offset 0.
+void addTriangles(rhi::Context& ctx, const scene::Scene& scene, const scene::Primitive& prim, bool mixedSides,
+                  GpuScene& gs, std::vector<gpu::GeometryRecord>& rows, std::vector<rhi::BlasGeometry>& blas) {
+  const std::vector<gpu::Vertex> vertices = gpuVertices(prim);
   const rhi::Buffer& vb = gs.vertexBuffers.emplace_back(
       rhi::createBufferWithData(ctx, std::as_bytes(std::span(vertices)), geometryUsage(ctx), "vertices"));
   const rhi::Buffer& ib = gs.indexBuffers.emplace_back(
@@ -167,6 +183,7 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
 
   std::vector<gpu::InstanceRecord> instanceRows;
   std::vector<VkAccelerationStructureInstanceKHR> tlasInstances;
+  std::vector<int32_t> tlasDeformer;  // per TLAS instance: its Deformers::instances row, -1: the mesh's BLAS
   for (uint32_t i = 0; i < scene.instances.size(); ++i) {
     const scene::Instance& inst = scene.instances[i];
     const scene::Mesh& mesh = scene.meshes[inst.mesh];
@@ -175,12 +192,18 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     gs.instanceRowOf.back() = int32_t(instanceRows.size());
     const uint32_t mask = gpu::kMaskVisible | (inst.castsShadows ? gpu::kMaskCastsShadow : 0u);
     const uint32_t row = uint32_t(instanceRows.size());
-    instanceRows.push_back({inst.worldFromObject, glm::inverseTranspose(inst.worldFromObject),
-                            meshFirstGeometry[inst.mesh], mask, 0, 0, inst.worldFromObject});
+    // A deforming instance draws and traces geometry of its own (render/deform.h).
+    const bool deforming = scene::deforms(scene, inst);
+    const uint32_t firstGeometry =
+        deforming ? addDeformer(ctx, scene, i, meshFirstGeometry[inst.mesh], blasInputs[inst.mesh], geometryRows, gs)
+                  : meshFirstGeometry[inst.mesh];
+    tlasDeformer.push_back(deforming ? int32_t(gs.deformers->instances.size() - 1) : -1);
+    instanceRows.push_back({inst.worldFromObject, glm::inverseTranspose(inst.worldFromObject), firstGeometry, mask, 0,
+                            0, inst.worldFromObject});
     for (uint32_t p = 0; p < mesh.primitives.size(); ++p)
-      gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + p, uint32_t(mesh.primitives[p].indices.size()), false,
-                          inst.castsShadows, cullsBackFaces(scene, mesh.primitives[p].material),
-                          meshBounds[inst.mesh][p].first, meshBounds[inst.mesh][p].second});
+      gs.draws.push_back({row, firstGeometry + p, uint32_t(mesh.primitives[p].indices.size()), false, inst.castsShadows,
+                          cullsBackFaces(scene, mesh.primitives[p].material), meshBounds[inst.mesh][p].first,
+                          meshBounds[inst.mesh][p].second, deforming});
     if (!mesh.spheres.empty())
       gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + uint32_t(mesh.primitives.size()),
                           uint32_t(mesh.spheres.size()), true, inst.castsShadows, false,
@@ -211,6 +234,7 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   if (lightRows.empty()) lightRows.push_back({});  // a buffer must not be empty
 
   gs.geometries = tableBuffer(ctx, geometryRows, "geometries");
+  finishDeformers(ctx, gs);
   if (scene.animated()) {
     gs.instancesDynamic = true;
     // Rewritten by the host every frame while instances move (frames are serialised).
@@ -224,7 +248,9 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   gs.lights = tableBuffer(ctx, lightRows, "lights");
   std::vector<gpu::DrawRecord> drawRows;
   for (const GpuScene::Draw& d : gs.draws)
-    drawRows.push_back({d.instance, d.geometry, d.count, d.spheres ? gpu::kDrawSpheres : 0u, d.aabbMin, d.aabbMax});
+    drawRows.push_back({d.instance, d.geometry, d.count,
+                        (d.spheres ? gpu::kDrawSpheres : 0u) | (d.unbounded ? gpu::kDrawUnbounded : 0u), d.aabbMin,
+                        d.aabbMax});
   gs.drawRecords = tableBuffer(ctx, drawRows, "draw-records");
   gs.cull = createCullBuffers(ctx, uint32_t(gs.draws.size()));
   uploadEmissiveTriangles(ctx, scene, meshFirstGeometry, gs);
@@ -246,8 +272,12 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   }
   auto t1 = Clock::now();
   gs.blases = rhi::buildBlases(ctx, blasInputs, &gs.accelStats);
-  for (auto& ti : tlasInstances)
-    ti.accelerationStructureReference = gs.blases[ti.accelerationStructureReference].address();
+  for (size_t t = 0; t < tlasInstances.size(); ++t) {
+    auto& ti = tlasInstances[t];
+    ti.accelerationStructureReference = tlasDeformer[t] >= 0
+                                            ? gs.deformers->instances[size_t(tlasDeformer[t])].blas.address()
+                                            : gs.blases[ti.accelerationStructureReference].address();
+  }
   gs.tlas = rhi::Tlas::build(ctx, tlasInstances, &gs.accelStats);
   gs.tlasInstances = std::move(tlasInstances);
   gs.accelBuildMs = msSince(t1);

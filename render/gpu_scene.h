@@ -42,6 +42,7 @@ struct GpuScene {
     bool castsShadows = true;     // false for a light's visible shape (no shadow-map draw)
     bool cullsBackFaces = false;  // scene::Material::cullsBackFaces(): rays (and shadow maps) skip back faces
     glm::vec3 aabbMin{0.0f}, aabbMax{0.0f};  // object space: what GPU culling tests
+    bool unbounded = false;                  // deforming (render/deform.h): its bounds move, never culled
   };
   std::vector<rhi::Buffer> vertexBuffers;  // one per primitive (AABBs for sphere sets)
   std::vector<rhi::Buffer> indexBuffers;   // one per primitive (SphereRecords for sphere sets)
@@ -69,6 +70,8 @@ struct GpuScene {
   // The culling pass's per-frame buffers and their graph states (render/passes/cull.h). Shared
   // ownership only so the type may stay incomplete here; mutable state of a const scene.
   std::shared_ptr<struct CullBuffers> cull;
+  // Skinned and morphed instances' own vertices and BLASes (render/deform.h); null when none deforms.
+  std::shared_ptr<struct Deformers> deformers;
   // The CPU copy of the instance table (its buffer is host-visible for animated scenes, and once an
   // instance is edited), and for each scene instance its row (-1: nothing to draw) — the row is
   // also its TLAS instance index.
@@ -87,6 +90,9 @@ struct GpuScene {
 };
 
 Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene);
+
+// A primitive's vertices as uploaded (tangents generated where the file has none).
+std::vector<gpu::Vertex> gpuVertices(const scene::Primitive& prim);
 
 // What the scene's materials can ask of the hybrid's specular pass (render/gpu_materials.cpp): the
 // lowest roughness any lit material can reach (its factor × the lowest G of its metallic-roughness

@@ -33,6 +33,8 @@ class InstanceMotion {
   // Writes this frame's transforms (animation at `seconds`, then the edits); `first` frames have
   // no motion (prevWorldFromObject = worldFromObject).
   Update update(GpuScene& gpu, bool animated, float seconds, bool first);
+  // The scene as animated now (nodes, instances): the animated copy, else `scene` itself.
+  const scene::Scene& pose(const scene::Scene& scene, bool animated) const { return animated ? pose_ : scene; }
   // Whether the TLAS instances changed since the last refit (and forgets it when `refitting`).
   bool takeTlasRefit(bool refitting);
 

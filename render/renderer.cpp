@@ -247,7 +247,7 @@ Result<RenderOutput> Renderer::Impl::renderPathTraced(const RenderSettings& s) {
   auto cam = findCamera(s);
   if (!cam) return cam.error();
   if (s.cameraPath || (scene.animated() && s.animate))
-    log::info("--mode pathtrace renders the static camera and the rest pose");
+    log::info("--mode pathtrace renders one image: the static camera and the pose at --time ({} s)", s.time);
   if (!pathTracer) pathTracer = std::make_unique<PathTracer>();
   beginExposure(s, **cam);
   const PathTraceResources r{ctx, gpu, pipelines, constants, nearest, linear, transients, histories, commands, timers};
@@ -256,7 +256,10 @@ Result<RenderOutput> Renderer::Impl::renderPathTraced(const RenderSettings& s) {
     exposure.beginFrame(true);  // one exposure for the whole accumulation
     writeConstants(s, **cam, glm::vec2(0.0f), nullptr);
   };
-  if (exposure.automatic()) {
+  // A hybrid frame poses the scene at --time for the path tracer (instance table, TLAS, deformed
+  // meshes: they stay as that frame leaves them) and meters the exposure.
+  const bool posed = scene.animated() || gpu.deformers;
+  if (exposure.automatic() || posed) {
     // Metered as the hybrid meters the same view (its metering frames, traced primaries): the
     // reference and the hybrid render a scene at one exposure, so their images compare as they are.
     RenderSettings meter = s;
@@ -265,10 +268,12 @@ Result<RenderOutput> Renderer::Impl::renderPathTraced(const RenderSettings& s) {
     meter.aovs.clear();
     if (Status begun = beginRun(meter); !begun) return begun.error();
     for (uint32_t k = 0; k < kMeterFrames; ++k)
-      if (renderFrame({.meter = true}); run->meterDistance <= kMeterSettled) break;
+      if (renderFrame({.meter = true}); !exposure.automatic() || run->meterDistance <= kMeterSettled) break;
     run.reset();
-    exposure.beginFrame(true);
-    log::info("exposure: auto, EV100 {:.2f} (metered by the hybrid)", exposure.ev100());
+    if (exposure.automatic()) {
+      exposure.beginFrame(true);
+      log::info("exposure: auto, EV100 {:.2f} (metered by the hybrid)", exposure.ev100());
+    }
   }
   manyLights = false;
   auto out = pathTracer->render(s, r, exposure.exposure(), write);

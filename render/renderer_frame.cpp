@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/deform.h"
 #include "render/jitter.h"
 #include "render/passes/cull.h"
 #include "render/renderer_impl.h"
@@ -70,12 +71,20 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   const FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, tlas};
   bool moving = s.cameraPath || control.moving;
   {
-    const bool moved = motion.update(gpu, r.animated, s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0).moved;
+    bool moved = motion.update(gpu, r.animated, s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0).moved;
+    // Skinned and morphed meshes take the pose on the first frame and, while animated, every frame
+    // (render/deform.h); playing, they move even where no instance transform does.
+    const bool deform = gpu.deformers && (r.animated || f == 0);
+    if (deform)
+      deformMeshes(graph, in, scene, motion.pose(scene, r.animated), f == 0,
+                   !rasterMode && gpu.tlas.handle() != VK_NULL_HANDLE);
+    moved = moved || (deform && r.animated && s.animate && f > 0);
     // Motion vectors of this frame still show last frame's motion after the pose stops.
     moving = moving || moved || r.movedBefore;
     r.movedBefore = moved;
     r.stillFrames = viewHeld && !moving ? r.stillFrames + 1 : 0;
-    if (motion.takeTlasRefit(!rasterMode) && !rasterMode)  // the raster mode refits when it leaves
+    const bool tlasStale = motion.takeTlasRefit(!rasterMode) || deform;  // a deformed BLAS moves the TLAS's boxes
+    if (tlasStale && !rasterMode)                                        // the raster mode refits when it leaves
       updateTlas(graph, in, gpu.tlas.prepare(gpu.tlasInstances));
   }
 

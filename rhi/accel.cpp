@@ -181,6 +181,72 @@ std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std
 }
 
 namespace {
+
+// The Vulkan description of triangle geometries (a dynamic BLAS holds no spheres).
+std::vector<VkAccelerationStructureGeometryKHR> triangleGeometries(const std::vector<BlasGeometry>& geometries) {
+  std::vector<VkAccelerationStructureGeometryKHR> out;
+  for (const BlasGeometry& g : geometries) {
+    VkAccelerationStructureGeometryKHR geo{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
+    geo.flags = g.opaque ? VK_GEOMETRY_OPAQUE_BIT_KHR : 0;
+    geo.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
+    auto& t = geo.geometry.triangles;
+    t.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR;
+    t.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;
+    t.vertexData.deviceAddress = g.vertexAddress;
+    t.vertexStride = g.vertexStride;
+    t.maxVertex = g.vertexCount - 1;
+    t.indexType = VK_INDEX_TYPE_UINT32;
+    t.indexData.deviceAddress = g.indexAddress;
+    out.push_back(geo);
+  }
+  return out;
+}
+
+VkAccelerationStructureBuildGeometryInfoKHR dynamicBlasInfo(
+    const std::vector<VkAccelerationStructureGeometryKHR>& geos) {
+  VkAccelerationStructureBuildGeometryInfoKHR info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
+  info.type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR;
+  info.flags =
+      VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR | VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_UPDATE_BIT_KHR;
+  info.geometryCount = uint32_t(geos.size());
+  info.pGeometries = geos.data();
+  return info;
+}
+
+}  // namespace
+
+DynamicBlas::DynamicBlas(Context& ctx, std::vector<BlasGeometry> geometries, const char* name)
+    : ctx_(&ctx), geometries_(std::move(geometries)) {
+  const std::vector<VkAccelerationStructureGeometryKHR> geos = triangleGeometries(geometries_);
+  VkAccelerationStructureBuildGeometryInfoKHR info = dynamicBlasInfo(geos);
+  info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
+  std::vector<uint32_t> triangles;
+  for (const BlasGeometry& g : geometries_) triangles.push_back(g.indexCount / 3);
+  VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+  vkGetAccelerationStructureBuildSizesKHR(ctx.device(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info,
+                                          triangles.data(), &sizes);
+  as_ = createAccelerationStructure(ctx, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR,
+                                    sizes.accelerationStructureSize, name);
+  const VkDeviceSize align = std::max<uint32_t>(ctx.caps().minScratchOffsetAlignment, 1);
+  scratch_ = Buffer(ctx, std::max(sizes.buildScratchSize, sizes.updateScratchSize) + align,
+                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "dynamic-blas-scratch");
+}
+
+void DynamicBlas::record(VkCommandBuffer cmd, bool refit) const {
+  const std::vector<VkAccelerationStructureGeometryKHR> geos = triangleGeometries(geometries_);
+  VkAccelerationStructureBuildGeometryInfoKHR info = dynamicBlasInfo(geos);
+  info.mode = refit ? VK_BUILD_ACCELERATION_STRUCTURE_MODE_UPDATE_KHR : VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
+  info.srcAccelerationStructure = refit ? as_.handle() : VK_NULL_HANDLE;
+  info.dstAccelerationStructure = as_.handle();
+  const VkDeviceSize align = std::max<uint32_t>(ctx_->caps().minScratchOffsetAlignment, 1);
+  info.scratchData.deviceAddress = alignUp(scratch_.address(), align);
+  std::vector<VkAccelerationStructureBuildRangeInfoKHR> ranges;
+  for (const BlasGeometry& g : geometries_) ranges.push_back({g.indexCount / 3, 0, 0, 0});
+  const VkAccelerationStructureBuildRangeInfoKHR* rangePtr = ranges.data();
+  vkCmdBuildAccelerationStructuresKHR(cmd, 1, &info, &rangePtr);
+}
+
+namespace {
 VkAccelerationStructureBuildGeometryInfoKHR tlasBuildInfo(const VkAccelerationStructureGeometryKHR* geo) {
   VkAccelerationStructureBuildGeometryInfoKHR info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
   info.type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR;

@@ -59,6 +59,26 @@ struct AccelBuildStats {
 std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std::vector<BlasGeometry>> meshes,
                                                AccelBuildStats* stats);
 
+// A BLAS whose vertices move (skinned and morphed meshes, render/deform.h): built with
+// ALLOW_UPDATE and not compacted, then refitted in place (an UPDATE build: same triangles, new
+// positions) or rebuilt, as the caller records it each frame. The geometry's buffers must outlive it.
+class DynamicBlas {
+ public:
+  DynamicBlas() = default;
+  DynamicBlas(Context& ctx, std::vector<BlasGeometry> geometries, const char* name);
+  // Records a rebuild or, with `refit`, an update of the last build's structure. The caller
+  // orders it after the vertex writes and before any use (barriers).
+  void record(VkCommandBuffer cmd, bool refit) const;
+  VkDeviceAddress address() const { return as_.address(); }
+  VkDeviceSize size() const { return as_.size(); }
+
+ private:
+  Context* ctx_ = nullptr;
+  std::vector<BlasGeometry> geometries_;
+  AccelerationStructure as_;
+  Buffer scratch_;
+};
+
 // A TLAS over instances whose accelerationStructureReference are BLAS addresses, kept up to date
 // as instances move (docs/techniques.md §5): refitted (an UPDATE build, in place) when only transforms
 // change, rebuilt when the instance count changes. The instance array lives in host-visible

@@ -31,7 +31,15 @@ glm::vec4 hermite(const AnimationChannel& channel, size_t k, float s, float dt) 
 
 bool wellFormed(const AnimationChannel& channel, size_t nodeCount) {
   const size_t per = channel.interp == AnimationChannel::CubicSpline ? 3 : 1;
-  return channel.node < nodeCount && !channel.times.empty() && channel.values.size() == per * channel.times.size();
+  if (channel.node >= nodeCount || channel.times.empty()) return false;
+  if (channel.path == AnimationChannel::Weights)
+    return channel.weightCount > 0 && channel.weights.size() == per * channel.times.size() * channel.weightCount;
+  return channel.values.size() == per * channel.times.size();
+}
+
+glm::vec3 normalizedOr(glm::vec3 v, glm::vec3 fallback) {
+  const float length = glm::length(v);
+  return length > 0.0f && std::isfinite(length) ? v / length : fallback;
 }
 
 }  // namespace
@@ -88,6 +96,42 @@ glm::vec4 sampleChannel(const AnimationChannel& channel, float timeSeconds) {
   return finish(keyValue(channel, k));
 }
 
+std::vector<float> sampleWeights(const AnimationChannel& channel, float timeSeconds) {
+  const std::vector<float>& times = channel.times;
+  const size_t n = channel.weightCount;
+  const bool cubic = channel.interp == AnimationChannel::CubicSpline;
+  // Key k's values (not its tangents): n weights starting here.
+  auto key = [&](size_t k) { return channel.weights.data() + (cubic ? (3 * k + 1) * n : k * n); };
+  std::vector<float> out(n);
+  auto copyKey = [&](size_t k) {
+    std::copy(key(k), key(k) + n, out.begin());
+    return out;
+  };
+  if (!(timeSeconds > times.front())) return copyKey(0);
+  if (timeSeconds >= times.back()) return copyKey(times.size() - 1);
+  const size_t k = size_t(std::upper_bound(times.begin(), times.end(), timeSeconds) - times.begin()) - 1;
+  const float dt = times[k + 1] - times[k];
+  const float s = std::clamp((timeSeconds - times[k]) / dt, 0.0f, 1.0f);
+  switch (channel.interp) {
+    case AnimationChannel::Step:
+      return copyKey(k);
+    case AnimationChannel::Linear:
+      for (size_t i = 0; i < n; ++i) out[i] = key(k)[i] + s * (key(k + 1)[i] - key(k)[i]);
+      return out;
+    case AnimationChannel::CubicSpline: {
+      const float* w = channel.weights.data();
+      const float s2 = s * s, s3 = s2 * s;
+      for (size_t i = 0; i < n; ++i) {
+        const float p0 = w[(3 * k + 1) * n + i], m0 = dt * w[(3 * k + 2) * n + i];
+        const float p1 = w[(3 * (k + 1) + 1) * n + i], m1 = dt * w[(3 * (k + 1)) * n + i];
+        out[i] = (2 * s3 - 3 * s2 + 1) * p0 + (s3 - 2 * s2 + s) * m0 + (-2 * s3 + 3 * s2) * p1 + (s3 - s2) * m1;
+      }
+      return out;
+    }
+  }
+  return copyKey(k);
+}
+
 void updateWorldTransforms(Scene& scene) {
   for (size_t i = 0; i < scene.nodes.size(); ++i) {
     SceneNode& node = scene.nodes[i];
@@ -96,9 +140,28 @@ void updateWorldTransforms(Scene& scene) {
     node.worldFromNode =
         node.parent >= 0 && size_t(node.parent) < i ? scene.nodes[size_t(node.parent)].worldFromNode * local : local;
   }
-  for (Instance& instance : scene.instances)
-    if (instance.node >= 0 && size_t(instance.node) < scene.nodes.size())
-      instance.worldFromObject = scene.nodes[size_t(instance.node)].worldFromNode;
+  for (Instance& instance : scene.instances) {
+    if (instance.node < 0 || size_t(instance.node) >= scene.nodes.size()) continue;
+    const SceneNode& node = scene.nodes[size_t(instance.node)];
+    // A skinned instance is placed by its joints (scene/skinning.h); its own transform is the identity.
+    if (instance.skin < 0) instance.worldFromObject = node.worldFromNode;
+    if (!node.weights.empty()) instance.morphWeights = node.weights;
+  }
+  // Cameras and lights on animated nodes: at the node's origin, looking (shining) down its -Z.
+  auto nodeWorld = [&](int32_t n) -> const glm::mat4* {
+    return n >= 0 && size_t(n) < scene.nodes.size() ? &scene.nodes[size_t(n)].worldFromNode : nullptr;
+  };
+  for (Camera& camera : scene.cameras)
+    if (const glm::mat4* w = nodeWorld(camera.node)) {
+      camera.position = glm::vec3((*w)[3]);
+      camera.target = camera.position + normalizedOr(glm::mat3(*w) * glm::vec3(0, 0, -1), glm::vec3(0, 0, -1));
+      camera.up = normalizedOr(glm::mat3(*w) * glm::vec3(0, 1, 0), glm::vec3(0, 1, 0));
+    }
+  for (Light& light : scene.lights)
+    if (const glm::mat4* w = nodeWorld(light.node)) {
+      light.position = glm::vec3((*w)[3]);
+      light.direction = normalizedOr(glm::mat3(*w) * glm::vec3(0, 0, -1), light.direction);
+    }
 }
 
 bool evaluateAnimations(Scene& scene, float timeSeconds, bool loop) {
@@ -115,6 +178,10 @@ bool evaluateAnimations(Scene& scene, float timeSeconds, bool loop) {
     for (const AnimationChannel& channel : animation.channels) {
       if (!wellFormed(channel, scene.nodes.size())) continue;  // validate() reports these
       SceneNode& node = scene.nodes[channel.node];
+      if (channel.path == AnimationChannel::Weights) {
+        node.weights = sampleWeights(channel, timeSeconds);
+        continue;
+      }
       const glm::vec4 v = sampleChannel(channel, timeSeconds);
       switch (channel.path) {
         case AnimationChannel::Translation:
@@ -126,18 +193,23 @@ bool evaluateAnimations(Scene& scene, float timeSeconds, bool loop) {
         case AnimationChannel::Scale:
           node.scale = glm::vec3(v);
           break;
+        case AnimationChannel::Weights:
+          break;
       }
     }
 
   std::vector<glm::mat4> before;
+  std::vector<std::vector<float>> weightsBefore;
   before.reserve(scene.nodes.size() + scene.instances.size());
   for (const SceneNode& node : scene.nodes) before.push_back(node.worldFromNode);
   for (const Instance& instance : scene.instances) before.push_back(instance.worldFromObject);
+  for (const Instance& instance : scene.instances) weightsBefore.push_back(instance.morphWeights);
   updateWorldTransforms(scene);
   size_t i = 0;
   bool changed = false;
   for (const SceneNode& node : scene.nodes) changed |= before[i++] != node.worldFromNode;
   for (const Instance& instance : scene.instances) changed |= before[i++] != instance.worldFromObject;
+  for (size_t k = 0; k < scene.instances.size(); ++k) changed |= weightsBefore[k] != scene.instances[k].morphWeights;
   return changed;
 }
 

@@ -252,6 +252,26 @@ Result<std::vector<glm::vec4>> readVec4(const tinygltf::Model& model, int access
   return readVectors<4>(model, accessor, TINYGLTF_TYPE_VEC4, file);
 }
 
+Result<std::vector<glm::mat4>> readMat4(const tinygltf::Model& model, int accessor, const std::string& file) {
+  Result<Layout> layout = resolve(model, accessor, TINYGLTF_TYPE_MAT4, false, file);
+  if (!layout) return layout.error();
+  const Layout& l = *layout;
+  // Float matrices have no column padding (glTF 2.0 §3.6.2.4); the other component types are not
+  // allowed where Rayster reads matrices (inverse bind matrices).
+  if (l.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+    return bad(file, "accessor {} holds MAT4 of component type {}, need float (5126)", accessor, l.componentType);
+  auto decode = [&](const uint8_t* p) {
+    glm::mat4 m;
+    for (int c = 0; c < 16; ++c) m[c / 4][c % 4] = load<float>(p + size_t(c) * 4);  // column-major, as glm
+    return m;
+  };
+  std::vector<glm::mat4> out(l.count, glm::mat4(0.0f));
+  if (l.data)
+    for (size_t i = 0; i < l.count; ++i) out[i] = decode(l.data + i * l.stride);
+  RAYSTER_TRY(forEachSparse(model, accessor, l, file, [&](uint32_t e, const uint8_t* p) { out[e] = decode(p); }));
+  return out;
+}
+
 Result<std::vector<uint32_t>> readIndices(const tinygltf::Model& model, int accessor, const std::string& file) {
   Result<Layout> layout = resolve(model, accessor, TINYGLTF_TYPE_SCALAR, true, file);
   if (!layout) return layout.error();

@@ -1,6 +1,6 @@
 // glTF 2.0 animations: samplers read through the bounds-checked accessors, checked as the spec
 // requires (keys strictly increasing, one output per key, three per key for CUBICSPLINE), and
-// turned into AnimationChannels on Scene::nodes. Morph-target weights are not animated.
+// turned into AnimationChannels on Scene::nodes (translation, rotation, scale and morph weights).
 #include <algorithm>
 #include <cmath>
 
@@ -54,9 +54,26 @@ Result<std::vector<glm::vec4>> keyValues(const tinygltf::Model& model, int acces
   return out;
 }
 
+// A weights channel: `targets` scalars per key (× 3 for CUBICSPLINE), finite.
+Status readWeights(const tinygltf::Model& model, int accessor, size_t targets, const std::string& where,
+                   const std::string& file, AnimationChannel& channel) {
+  Result<std::vector<float>> values = readScalars(model, accessor, file);
+  if (!values) return values.error();
+  const bool cubic = channel.interp == AnimationChannel::CubicSpline;
+  const size_t expected = channel.times.size() * targets * (cubic ? 3 : 1);
+  if (values->size() != expected)
+    return bad(file, "{} has {} output values for {} keys of {} morph weights (expected {})", where, values->size(),
+               channel.times.size(), targets, expected);
+  for (size_t i = 0; i < values->size(); ++i)
+    if (!std::isfinite((*values)[i])) return bad(file, "{} output value {} is not finite", where, i);
+  channel.weights = std::move(*values);
+  channel.weightCount = uint32_t(targets);
+  return okStatus();
+}
+
 Result<AnimationChannel> convertChannel(const tinygltf::Model& model, const tinygltf::Animation& animation,
                                         const tinygltf::AnimationChannel& src, AnimationChannel::Path path,
-                                        const std::string& where, const std::string& file) {
+                                        size_t targets, const std::string& where, const std::string& file) {
   if (src.sampler < 0 || size_t(src.sampler) >= animation.samplers.size())
     return bad(file, "{} uses sampler {}, which does not exist", where, src.sampler);
   const tinygltf::AnimationSampler& sampler = animation.samplers[size_t(src.sampler)];
@@ -68,6 +85,12 @@ Result<AnimationChannel> convertChannel(const tinygltf::Model& model, const tiny
   Result<std::vector<float>> times = keyTimes(model, sampler.input, where, file);
   if (!times) return times.error();
   channel.times = std::move(*times);
+  if (path == AnimationChannel::Weights) {
+    if (channel.interp == AnimationChannel::CubicSpline && channel.times.size() < 2)
+      return bad(file, "{} is CUBICSPLINE with fewer than 2 keys", where);
+    RAYSTER_TRY(readWeights(model, sampler.output, targets, where, file, channel));
+    return channel;
+  }
   Result<std::vector<glm::vec4>> values = keyValues(model, sampler.output, path, file);
   if (!values) return values.error();
   channel.values = std::move(*values);
@@ -90,22 +113,32 @@ Result<AnimationChannel> convertChannel(const tinygltf::Model& model, const tiny
   return channel;
 }
 
-// Instances keep Instance::node only if that node or one of its parents is animated.
+// Instances, cameras and lights keep their node only if it or one of its parents is animated (an
+// instance also if its node's morph weights are). A skinned instance follows its joints, not its
+// node.
 void markAnimatedInstances(Scene& scene) {
-  std::vector<bool> moves(scene.nodes.size(), false);
+  std::vector<bool> moves(scene.nodes.size(), false), morphs(scene.nodes.size(), false);
   for (const Animation& animation : scene.animations)
-    for (const AnimationChannel& channel : animation.channels) moves[channel.node] = true;
+    for (const AnimationChannel& channel : animation.channels)
+      (channel.path == AnimationChannel::Weights ? morphs : moves)[channel.node] = true;
   for (size_t i = 0; i < scene.nodes.size(); ++i)  // parents come first
     if (scene.nodes[i].parent >= 0 && moves[size_t(scene.nodes[i].parent)]) moves[i] = true;
-  for (Instance& instance : scene.instances)
-    if (instance.node >= 0 && !moves[size_t(instance.node)]) instance.node = -1;
+  for (Instance& instance : scene.instances) {
+    if (instance.node < 0) continue;
+    const size_t n = size_t(instance.node);
+    if (!(moves[n] && instance.skin < 0) && !morphs[n]) instance.node = -1;
+  }
+  for (Camera& camera : scene.cameras)
+    if (camera.node >= 0 && !moves[size_t(camera.node)]) camera.node = -1;
+  for (Light& light : scene.lights)
+    if (light.node >= 0 && !moves[size_t(light.node)]) light.node = -1;
 }
 
 }  // namespace
 
 Status convertAnimations(const tinygltf::Model& model, const std::string& file, const std::vector<int>& sceneNodeOf,
                          Scene& scene) {
-  bool warnedWeights = false, warnedPath = false;
+  bool warnedPath = false;
   for (size_t a = 0; a < model.animations.size(); ++a) {
     const tinygltf::Animation& src = model.animations[a];
     Animation animation;
@@ -121,22 +154,30 @@ Status convertAnimations(const tinygltf::Model& model, const std::string& file, 
         path = AnimationChannel::Rotation;
       else if (pathName == "scale")
         path = AnimationChannel::Scale;
-      else if (pathName == "weights") {
-        if (!warnedWeights) log::warn("{}: morph-target weight animations are not supported; ignored", file);
-        warnedWeights = true;
-        continue;
-      } else {
+      else if (pathName == "weights")
+        path = AnimationChannel::Weights;
+      else {
         if (!warnedPath) log::warn("{}: animation path '{}' is not supported; ignored", file, pathName);
         warnedPath = true;
         continue;
       }
       if (channel.target_node < 0 || size_t(channel.target_node) >= model.nodes.size())
         return bad(file, "{} targets node {}, which does not exist", where, channel.target_node);
-      Result<AnimationChannel> converted = convertChannel(model, src, channel, path, where, file);
+      size_t targets = 0;  // morph targets of the node's mesh, for a weights channel
+      if (path == AnimationChannel::Weights) {
+        const tinygltf::Node& target = model.nodes[size_t(channel.target_node)];
+        if (target.mesh >= 0 && size_t(target.mesh) < model.meshes.size() &&
+            !model.meshes[size_t(target.mesh)].primitives.empty())
+          targets = model.meshes[size_t(target.mesh)].primitives.front().targets.size();
+        if (targets == 0)
+          return bad(file, "{} animates the weights of node {}, whose mesh has no morph targets", where,
+                     channel.target_node);
+      }
+      Result<AnimationChannel> converted = convertChannel(model, src, channel, path, targets, where, file);
       if (!converted) return converted.error();
       const int node = sceneNodeOf[size_t(channel.target_node)];
       if (node < 0) continue;  // a node outside the displayed scene
-      if (scene.nodes[size_t(node)].hasMatrix)
+      if (path != AnimationChannel::Weights && scene.nodes[size_t(node)].hasMatrix)
         return bad(file, "{} targets node {}, which has a matrix (glTF allows animating only TRS)", where,
                    channel.target_node);
       converted->node = uint32_t(node);

@@ -67,6 +67,7 @@ Result<std::vector<float>> readScalars(const tinygltf::Model& model, int accesso
 Result<std::vector<glm::vec2>> readVec2(const tinygltf::Model& model, int accessor, const std::string& file);
 Result<std::vector<glm::vec3>> readVec3(const tinygltf::Model& model, int accessor, const std::string& file);
 Result<std::vector<glm::vec4>> readVec4(const tinygltf::Model& model, int accessor, const std::string& file);
+Result<std::vector<glm::mat4>> readMat4(const tinygltf::Model& model, int accessor, const std::string& file);
 Result<std::vector<uint32_t>> readIndices(const tinygltf::Model& model, int accessor, const std::string& file);
 
 // ---- gltf_meshes.cpp ----
@@ -89,6 +90,14 @@ Status validateModel(const tinygltf::Model& model, const std::string& file);
 
 Status convertMaterials(const tinygltf::Model& model, const std::string& file, const ImageDecodeState& images,
                         Scene& scene);
+
+// ---- gltf_skins.cpp ----
+
+// Reads the skins the displayed scene's instances use into scene.skins (glTF skin i becomes
+// scene skin i; Instance::skin holds the glTF index until then). A skin whose joints are not all in
+// the displayed scene cannot be posed: its instances are drawn in the bind pose, with a warning.
+Status convertSkins(const tinygltf::Model& model, const std::string& file, const std::vector<int>& sceneNodeOf,
+                    Scene& scene);
 
 // ---- gltf_animations.cpp ----
 

@@ -255,6 +255,29 @@ Status addMeshInstance(MeshBuilder& meshes, std::vector<int>& meshMap, int index
   instance.mesh = uint32_t(mapped);
   instance.worldFromObject = world;
   instance.node = self;  // reset by convertAnimations() unless the node moves
+  const Mesh& mesh = scene.meshes[size_t(mapped)];
+  bool skinned = false, morphed = false;
+  for (const Primitive& p : mesh.primitives) skinned |= !p.influences.empty(), morphed |= !p.targets.empty();
+  // A skin poses only meshes with JOINTS/WEIGHTS; it places them in world space on its own, so the
+  // node's transform does not apply (glTF 2.0 §3.7.3.3: the skinned mesh node's transform is ignored).
+  if (node.skin >= 0 && skinned) {
+    instance.skin = node.skin;  // the glTF skin index; convertSkins() checks it
+    instance.worldFromObject = glm::mat4(1.0f);
+  } else if (node.skin >= 0) {
+    log::warn("{}: node {} has a skin but its mesh has no JOINTS_0/WEIGHTS_0; drawn unskinned", file, index);
+  }
+  if (!node.weights.empty()) {
+    size_t targets = mesh.primitives.front().targets.size();
+    if (node.weights.size() != targets)
+      return bad(file, "nodes[{}].weights: {} weights for {} morph targets", index, node.weights.size(), targets);
+    for (double w : node.weights) {
+      if (!std::isfinite(w)) return bad(file, "nodes[{}].weights: a weight is not finite", index);
+      instance.morphWeights.push_back(float(w));
+    }
+  } else if (morphed) {
+    instance.morphWeights = mesh.weights;
+  }
+  scene.nodes[size_t(self)].weights = instance.morphWeights;
   scene.instances.push_back(instance);
   return okStatus();
 }
@@ -268,7 +291,6 @@ Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene
   MeshBuilder meshes{model, file, scene, std::nullopt};
   std::vector<int> meshMap(model.meshes.size(), kMeshUnconverted);
   sceneNodeOf.assign(model.nodes.size(), -1);
-  bool warnedSkin = false;
   // Explicit stack of (glTF node, parent in Scene::nodes): hierarchies can be deep, and a hostile
   // file must not overflow ours.
   std::vector<std::pair<int, int32_t>> stack;
@@ -291,12 +313,15 @@ Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene
     scene.nodes.push_back(std::move(*converted));
 
     if (node.mesh >= 0) RAYSTER_TRY(addMeshInstance(meshes, meshMap, index, self, world));
-    if (node.mesh >= 0 && node.skin >= 0 && !warnedSkin) {
-      log::warn("{}: skins are not supported; skinned meshes are drawn in their bind pose", file);
-      warnedSkin = true;
+    // Cameras and lights remember their node: convertAnimations() keeps the link if it moves.
+    if (node.camera >= 0) {
+      RAYSTER_TRY(addCamera(model, node, world, scene, file));
+      scene.cameras.back().node = self;
     }
-    if (node.camera >= 0) RAYSTER_TRY(addCamera(model, node, world, scene, file));
-    if (int light = nodeLight(node); light != -1) RAYSTER_TRY(addLight(model, node, light, world, scene, file));
+    if (int light = nodeLight(node); light != -1) {
+      RAYSTER_TRY(addLight(model, node, light, world, scene, file));
+      scene.lights.back().node = self;
+    }
     for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.emplace_back(*child, self);
   }
   return okStatus();
@@ -316,6 +341,7 @@ Result<Scene> loadGltf(const fs::path& path) {
   RAYSTER_TRY(gltf::convertMaterials(*model, file, images, scene));
   std::vector<int> sceneNodeOf;
   RAYSTER_TRY(gltf::convertNodes(*model, file, scene, sceneNodeOf));
+  RAYSTER_TRY(gltf::convertSkins(*model, file, sceneNodeOf, scene));
   RAYSTER_TRY(gltf::convertAnimations(*model, file, sceneNodeOf, scene));
 
   // validate() insists on a camera, but a camera-less file is fine here: applyDefaults() frames

@@ -52,6 +52,8 @@ void generateFlatNormals(Primitive& prim) {
   expand(prim.uvs);
   expand(prim.uvs1);
   expand(prim.colors);
+  for (SkinInfluences& set : prim.influences) expand(set.joints), expand(set.weights);
+  for (MorphTarget& target : prim.targets) expand(target.positions), expand(target.normals), expand(target.tangents);
   for (size_t i = 0; i < prim.indices.size(); ++i) prim.indices[i] = uint32_t(i);
   prim.normals.assign(prim.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
   for (size_t t = 0; t + 2 < prim.positions.size(); t += 3) {
@@ -110,6 +112,75 @@ Result<std::vector<glm::vec4>> readColors(const tinygltf::Model& model, int inde
   return colors;
 }
 
+// JOINTS_n with WEIGHTS_n, for n = 0, 1, … as long as both are there (glTF 2.0 §3.7.3.3): joints
+// as unsigned byte or short, weights as float or normalized unsigned byte or short, VEC4 each.
+Status readSkinInfluences(const tinygltf::Model& model, const tinygltf::Primitive& src, const std::string& file,
+                          const std::string& where, Primitive& prim) {
+  const size_t vertexCount = prim.positions.size();
+  for (int set = 0;; ++set) {
+    const int joints = attribute(src, fmt::format("JOINTS_{}", set).c_str());
+    const int weights = attribute(src, fmt::format("WEIGHTS_{}", set).c_str());
+    if (joints < 0 && weights < 0) break;
+    if (joints < 0 || weights < 0)
+      return bad(file, "{}: {} without {}", where,
+                 joints < 0 ? fmt::format("WEIGHTS_{}", set) : fmt::format("JOINTS_{}", set),
+                 joints < 0 ? fmt::format("JOINTS_{}", set) : fmt::format("WEIGHTS_{}", set));
+    if (size_t(joints) >= model.accessors.size())
+      return bad(file, "{}: JOINTS_{} accessor {} does not exist", where, set, joints);
+    const tinygltf::Accessor& ja = model.accessors[size_t(joints)];
+    if (ja.type != TINYGLTF_TYPE_VEC4 ||
+        (ja.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+         ja.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) ||
+        ja.normalized)
+      return bad(file, "{}: JOINTS_{} must be VEC4 unsigned byte or unsigned short", where, set);
+    auto j = readVec4(model, joints, file);
+    if (!j) return j.error();
+    auto w = readVec4(model, weights, file);
+    if (!w) return w.error();
+    if (j->size() != vertexCount || w->size() != vertexCount)
+      return bad(file, "{}: JOINTS_{}/WEIGHTS_{} have {}/{} elements for {} positions", where, set, set, j->size(),
+                 w->size(), vertexCount);
+    SkinInfluences influences;
+    influences.joints.reserve(vertexCount);
+    for (const glm::vec4& v : *j) influences.joints.emplace_back(glm::u16vec4(v));
+    influences.weights = std::move(*w);
+    for (size_t i = 0; i < vertexCount; ++i)
+      for (int k = 0; k < 4; ++k)
+        if (!(influences.weights[i][k] >= 0.0f) || !std::isfinite(influences.weights[i][k]))
+          return bad(file, "{}: WEIGHTS_{} of vertex {} is {}, not a finite weight >= 0", where, set, i,
+                     influences.weights[i][k]);
+    prim.influences.push_back(std::move(influences));
+  }
+  return okStatus();
+}
+
+// Morph targets: POSITION, NORMAL and TANGENT displacements (VEC3 each), every one optional.
+Status readMorphTargets(const tinygltf::Model& model, const tinygltf::Primitive& src, const std::string& file,
+                        const std::string& where, Primitive& prim) {
+  const size_t vertexCount = prim.positions.size();
+  for (size_t t = 0; t < src.targets.size(); ++t) {
+    MorphTarget target;
+    for (const auto& [name, accessor] : src.targets[t]) {
+      std::vector<glm::vec3>* into = name == "POSITION"  ? &target.positions
+                                     : name == "NORMAL"  ? &target.normals
+                                     : name == "TANGENT" ? &target.tangents
+                                                         : nullptr;
+      if (!into) continue;  // TEXCOORD_n and COLOR_n targets are allowed and not morphed here
+      auto deltas = readVec3(model, accessor, file);
+      if (!deltas) return deltas.error();
+      if (deltas->size() != vertexCount)
+        return bad(file, "{}: target {} {} has {} elements for {} positions", where, t, name, deltas->size(),
+                   vertexCount);
+      for (size_t i = 0; i < vertexCount; ++i)
+        if (!std::isfinite((*deltas)[i].x + (*deltas)[i].y + (*deltas)[i].z))
+          return bad(file, "{}: target {} {} element {} is not finite", where, t, name, i);
+      *into = std::move(*deltas);
+    }
+    prim.targets.push_back(std::move(target));
+  }
+  return okStatus();
+}
+
 // "mesh 'name'" or, for unnamed meshes, "mesh 3".
 std::string meshLabel(const tinygltf::Mesh& mesh, int index) {
   return mesh.name.empty() ? fmt::format("mesh {}", index) : fmt::format("mesh '{}'", mesh.name);
@@ -160,7 +231,6 @@ Result<Primitive> convertPrimitive(MeshBuilder& builder, const tinygltf::Mesh& m
   const bool strip = src.mode == TINYGLTF_MODE_TRIANGLE_STRIP, fan = src.mode == TINYGLTF_MODE_TRIANGLE_FAN;
   if (src.mode != TINYGLTF_MODE_TRIANGLES && src.mode != -1 && !strip && !fan)
     return bad(file, "{} primitive {} uses mode {}, which glTF does not define", label, primIndex, src.mode);
-  if (!src.targets.empty()) log::warn("{}: {} primitive {}: morph targets are ignored", file, label, primIndex);
 
   Primitive prim;
   auto positions = readVec3(model, attribute(src, "POSITION"), file);  // convertMesh checked it is there
@@ -209,6 +279,9 @@ Result<Primitive> convertPrimitive(MeshBuilder& builder, const tinygltf::Mesh& m
     if (!colors->empty()) RAYSTER_TRY(checkCount(colors->size(), "COLOR_0"));
     prim.colors = std::move(*colors);
   }
+
+  RAYSTER_TRY(readSkinInfluences(model, src, file, fmt::format("{} primitive {}", label, primIndex), prim));
+  RAYSTER_TRY(readMorphTargets(model, src, file, fmt::format("{} primitive {}", label, primIndex), prim));
 
   if (src.indices >= 0) {
     auto indices = readIndices(model, src.indices, file);
@@ -269,6 +342,19 @@ Result<Mesh> convertMesh(MeshBuilder& builder, int meshIndex) {
     // A primitive without triangles adds nothing to draw and would be an empty BLAS geometry.
     if (prim->indices.empty()) continue;
     mesh.primitives.push_back(std::move(*prim));
+  }
+  // Every primitive has as many targets as the mesh has weights (glTF 2.0 §3.7.2.2).
+  size_t targets = src.primitives.empty() ? 0 : src.primitives.front().targets.size();
+  for (size_t p = 0; p < src.primitives.size(); ++p)
+    if (src.primitives[p].targets.size() != targets)
+      return bad(builder.file, "{}: primitive {} has {} morph targets, primitive 0 has {}", meshLabel(src, meshIndex),
+                 p, src.primitives[p].targets.size(), targets);
+  if (!src.weights.empty() && src.weights.size() != targets)
+    return bad(builder.file, "{}: {} weights for {} morph targets", meshLabel(src, meshIndex), src.weights.size(),
+               targets);
+  for (double w : src.weights) {
+    if (!std::isfinite(w)) return bad(builder.file, "{}: a morph weight is not finite", meshLabel(src, meshIndex));
+    mesh.weights.push_back(float(w));
   }
   return mesh;
 }

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "scene/skinning.h"
+
 namespace rayster::scene {
 namespace {
 
@@ -43,6 +45,44 @@ Status validatePrimitive(const Scene& scene, const Mesh& mesh, size_t meshIndex,
   if (prim.material >= scene.materials.size())
     return makeError(ExitCode::BadInput, "{}: material {} out of range ({} materials)", where, prim.material,
                      scene.materials.size());
+  for (size_t s = 0; s < prim.influences.size(); ++s)
+    if (prim.influences[s].joints.size() != vertexCount || prim.influences[s].weights.size() != vertexCount)
+      return makeError(ExitCode::BadInput, "{}: skin influence set {} has {}/{} joints/weights for {} positions", where,
+                       s, prim.influences[s].joints.size(), prim.influences[s].weights.size(), vertexCount);
+  for (size_t t = 0; t < prim.targets.size(); ++t) {
+    const MorphTarget& target = prim.targets[t];
+    for (size_t n : {target.positions.size(), target.normals.size(), target.tangents.size()})
+      if (n != 0 && n != vertexCount)
+        return makeError(ExitCode::BadInput, "{}: morph target {} has {} elements for {} positions", where, t, n,
+                         vertexCount);
+  }
+  return okStatus();
+}
+
+// A skinned instance's joints exist, and every joint index of its mesh names one of them (the
+// deformation reads joint matrices by these indices).
+Status validateSkin(const Scene& scene, const Instance& instance, size_t index, const std::string& sceneName) {
+  if (instance.skin < 0) return okStatus();
+  if (size_t(instance.skin) >= scene.skins.size())
+    return makeError(ExitCode::BadInput, "{}: instance {} '{}' uses skin {} ({} skins)", sceneName, index,
+                     instance.name, instance.skin, scene.skins.size());
+  const Skin& skin = scene.skins[size_t(instance.skin)];
+  if (skin.joints.empty() || skin.inverseBindMatrices.size() != skin.joints.size())
+    return makeError(ExitCode::BadInput, "{}: skin '{}' has {} joints and {} inverse bind matrices", sceneName,
+                     skin.name, skin.joints.size(), skin.inverseBindMatrices.size());
+  for (uint32_t joint : skin.joints)
+    if (joint >= scene.nodes.size())
+      return makeError(ExitCode::BadInput, "{}: skin '{}' uses node {} ({} nodes)", sceneName, skin.name, joint,
+                       scene.nodes.size());
+  const Mesh& mesh = scene.meshes[instance.mesh];
+  for (size_t p = 0; p < mesh.primitives.size(); ++p)
+    for (const SkinInfluences& set : mesh.primitives[p].influences)
+      for (size_t v = 0; v < set.joints.size(); ++v)
+        for (int k = 0; k < 4; ++k)
+          if (set.weights[v][k] > 0.0f && set.joints[v][k] >= skin.joints.size())
+            return makeError(ExitCode::BadInput, "{}: {} primitive {} vertex {} uses joint {} of skin '{}' ({} joints)",
+                             sceneName, meshLabel(mesh, instance.mesh), p, v, set.joints[v][k], skin.name,
+                             skin.joints.size());
   return okStatus();
 }
 
@@ -59,8 +99,11 @@ Status validateAnimation(const Scene& scene, const std::string& sceneName) {
     for (size_t c = 0; c < animation.channels.size(); ++c) {
       const AnimationChannel& channel = animation.channels[c];
       const size_t per = channel.interp == AnimationChannel::CubicSpline ? 3 : 1;
+      const bool weights = channel.path == AnimationChannel::Weights;
       if (channel.node >= scene.nodes.size() || channel.times.empty() ||
-          channel.values.size() != per * channel.times.size())
+          (!weights && channel.values.size() != per * channel.times.size()) ||
+          (weights &&
+           (channel.weightCount == 0 || channel.weights.size() != per * channel.times.size() * channel.weightCount)))
         return makeError(ExitCode::BadInput, "{}: animation '{}' channel {} has a bad node or key count", sceneName,
                          animation.name, c);
     }
@@ -80,6 +123,11 @@ Aabb Scene::bounds() const {
   Aabb box;
   for (const Instance& instance : instances) {
     if (instance.mesh >= meshes.size()) continue;
+    if (instance.skin >= 0) {  // in world space only once posed
+      for (const Primitive& prim : meshes[instance.mesh].primitives)
+        for (const glm::vec3& p : deformPrimitive(*this, instance, prim).positions) box.extend(p);
+      continue;
+    }
     for (const Primitive& prim : meshes[instance.mesh].primitives)
       for (const glm::vec3& p : prim.positions) box.extend(glm::vec3(instance.worldFromObject * glm::vec4(p, 1.0f)));
     for (const Sphere& s : meshes[instance.mesh].spheres)
@@ -141,6 +189,7 @@ Status validate(const Scene& scene) {
     if (!finite(instance.worldFromObject))
       return makeError(ExitCode::BadInput, "{}: instance {} '{}' has a non-finite transform", sceneName, i,
                        instance.name);
+    RAYSTER_TRY(validateSkin(scene, instance, i, sceneName));
   }
   RAYSTER_TRY(validateAnimation(scene, sceneName));
   for (size_t i = 0; i < scene.lights.size(); ++i) {

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_precision.hpp>
 
 #include "core/error.h"
 
@@ -83,6 +84,21 @@ struct Texture {
   uint32_t sampler = 0;  // index into Scene::samplers
 };
 
+// One set of skinning influences (JOINTS_n and WEIGHTS_n): per vertex four joints (indices into
+// the skin's joint list) and their weights. Weights of all sets of a vertex sum to 1.
+struct SkinInfluences {
+  std::vector<glm::u16vec4> joints;
+  std::vector<glm::vec4> weights;
+};
+
+// A morph target: per-vertex displacements added with the target's weight. An empty attribute
+// displaces nothing.
+struct MorphTarget {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec3> tangents;  // xyz only: the bitangent sign is not morphed
+};
+
 struct Primitive {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
@@ -92,6 +108,8 @@ struct Primitive {
   std::vector<glm::vec4> colors;    // COLOR_0, linear RGBA in [0, 1], multiplies the base colour; empty: white
   std::vector<uint32_t> indices;    // triangle list, counter-clockwise seen from the front
   uint32_t material = 0;
+  std::vector<SkinInfluences> influences;  // JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1, …; empty: not skinned
+  std::vector<MorphTarget> targets;        // as many as the mesh's morph weights
 };
 
 // Analytic sphere, traced as AABB geometry with an intersection shader.
@@ -106,6 +124,16 @@ struct Mesh {
   std::string name;
   std::vector<Primitive> primitives;
   std::vector<Sphere> spheres;
+  std::vector<float> weights;  // default morph weights, one per target of every primitive
+};
+
+// A glTF skin: the nodes that pose a skinned mesh and their inverse bind matrices. A skinned
+// vertex lands at Σ weight × worldFromNode[joint] × inverseBind[joint] × position, in world space:
+// the skinned mesh's own node transform does not apply (glTF 2.0 §3.7.3.3).
+struct Skin {
+  std::string name;
+  std::vector<uint32_t> joints;                // indices into Scene::nodes
+  std::vector<glm::mat4> inverseBindMatrices;  // one per joint
 };
 
 struct Instance {
@@ -117,6 +145,10 @@ struct Instance {
   // are evaluated; -1: static. Loaders set it only where an animation moves the node or a parent,
   // so a renderer can refit just these instances.
   int32_t node = -1;
+  // Deformation (scene/skinning.h): the skin (index into Scene::skins, -1: none) and the morph
+  // weights (empty: the mesh's defaults). A skinned instance's worldFromObject is the identity.
+  int32_t skin = -1;
+  std::vector<float> morphWeights;
 };
 
 // A node of the glTF hierarchy, kept so that animation can recompute instance transforms.
@@ -132,6 +164,7 @@ struct SceneNode {
   bool hasMatrix = false;
   glm::mat4 matrix{1.0f};
   glm::mat4 worldFromNode{1.0f};  // as of the last load or evaluateAnimations()
+  std::vector<float> weights;     // morph weights of the node's mesh; empty: the mesh's defaults
 
   glm::mat4 parentFromNode() const;  // the local transform as a matrix
 };
@@ -139,12 +172,16 @@ struct SceneNode {
 // One animated property of one node, sampled as glTF 2.0 says.
 struct AnimationChannel {
   uint32_t node = 0;  // index into Scene::nodes
-  enum Path { Translation, Rotation, Scale } path = Translation;
+  enum Path { Translation, Rotation, Scale, Weights } path = Translation;
   enum Interp { Step, Linear, CubicSpline } interp = Linear;
   std::vector<float> times;  // seconds, strictly increasing, >= 0
   // One value per key (xyz for translation and scale, quaternion xyzw for rotation, as glTF
   // stores it); CubicSpline holds in-tangent, value, out-tangent for each key, 3 × times.size().
   std::vector<glm::vec4> values;
+  // Weights: `weightCount` morph weights per key (× 3 for CubicSpline, as above), key after key;
+  // `values` is unused.
+  std::vector<float> weights;
+  uint32_t weightCount = 0;
 };
 
 struct Animation {
@@ -165,6 +202,7 @@ struct Light {
   float radius = 0.0f;         // sphere light radius, 0 = hard point
   float angularRadius = 0.0f;  // directional, radians
   float innerConeAngle = 0.0f, outerConeAngle = 0.7853982f;
+  int32_t node = -1;  // an animated node it follows (at its origin, shining down its -Z); -1: fixed
 };
 
 struct Camera {
@@ -175,6 +213,7 @@ struct Camera {
   float yFov = 0.7f;  // radians
   float zNear = 0.05f;
   float zFar = 100.0f;
+  int32_t node = -1;  // an animated node it follows (at its origin, looking down its -Z); -1: fixed
 };
 
 // Light arriving from infinity where rays escape: nothing, a procedural sky, or an HDR map.
@@ -212,7 +251,8 @@ struct Scene {
   std::vector<Sampler> samplers;
   std::vector<Texture> textures;
   std::vector<Instance> instances;
-  std::vector<SceneNode> nodes;       // the hierarchy behind animated instances; may be empty
+  std::vector<SceneNode> nodes;  // the hierarchy behind animated instances; may be empty
+  std::vector<Skin> skins;
   std::vector<Animation> animations;  // all play together (see scene/animation.h)
   std::vector<Light> lights;
   std::vector<Camera> cameras;

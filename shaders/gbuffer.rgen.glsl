@@ -91,7 +91,9 @@ void main() {
   imageStore(outSpecular, px, encodeSpecular(gb.specular));
   imageStore(outId, px, uvec4(payload.instance));
   InstanceRecord inst = Instances(frame.instances).i[payload.instance];
-  imageStore(outMotion, px, vec4(motionFromWorld(sp.position, previousWorld(inst, sp.position)), 0.0, 0.0));
+  GeometryRecord g = Geometries(frame.geometries).g[payload.geometry];
+  vec3 prevWorld = previousWorldOnTriangle(inst, g, payload.primitive, payload.bary, sp.position);
+  imageStore(outMotion, px, vec4(motionFromWorld(sp.position, prevWorld), 0.0, 0.0));
 }
 
 #endif

@@ -27,7 +27,9 @@ void main() {
   Vertex v = Vertices(g.vertexAddress).v[index];
   vec4 world = inst.worldFromObject * vec4(v.position, 1.0);
   outWorldPos = world.xyz;
-  outPrevWorldPos = (inst.prevWorldFromObject * vec4(v.position, 1.0)).xyz;
+  // Deforming geometry moves within the instance too: last frame's position of this vertex.
+  vec3 prevPosition = g.prevPositionAddress != 0ul ? Positions(g.prevPositionAddress).p[index] : v.position;
+  outPrevWorldPos = (inst.prevWorldFromObject * vec4(prevPosition, 1.0)).xyz;
   outNormal = (inst.normalFromObject * vec4(v.normal, 0.0)).xyz;
   outTangent = vec4((inst.worldFromObject * vec4(v.tangent.xyz, 0.0)).xyz, v.tangent.w);
   outUv0 = v.uv0;

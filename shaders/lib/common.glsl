@@ -23,6 +23,7 @@ layout(buffer_reference, scalar) readonly buffer Instances { InstanceRecord i[];
 layout(buffer_reference, scalar) readonly buffer Materials { MaterialRecord m[]; };
 layout(buffer_reference, scalar) readonly buffer Lights { LightRecord l[]; };
 layout(buffer_reference, scalar) readonly buffer Spheres { SphereRecord s[]; };
+layout(buffer_reference, scalar) readonly buffer Positions { vec3 p[]; };  // GeometryRecord::prevPositionAddress
 layout(buffer_reference, scalar) readonly buffer VertexColors { uvec2 c[]; };  // RGBA16 UNORM (GeometryRecord)
 
 vec4 unpackVertexColor(uvec2 c) { return vec4(unpackUnorm2x16(c.x), unpackUnorm2x16(c.y)); }

@@ -19,6 +19,18 @@ vec3 previousWorld(InstanceRecord inst, vec3 world) {
   return (inst.prevWorldFromObject * (inverse(inst.worldFromObject) * vec4(world, 1.0))).xyz;
 }
 
+// The previous position of the point of triangle `primitive` of geometry `g` (instance `inst`) at
+// barycentrics `bary`, now at `world`: deforming geometry interpolates its vertices' last positions.
+vec3 previousWorldOnTriangle(InstanceRecord inst, GeometryRecord g, uint primitive, vec2 bary, vec3 world) {
+  if (g.kind != kGeometryTriangles || g.prevPositionAddress == 0ul) return previousWorld(inst, world);
+  Indices idx = Indices(g.indexAddress);
+  Positions prev = Positions(g.prevPositionAddress);
+  uint base = primitive * 3u;
+  vec3 p = prev.p[idx.i[base]] * (1.0 - bary.x - bary.y) + prev.p[idx.i[base + 1u]] * bary.x +
+           prev.p[idx.i[base + 2u]] * bary.y;
+  return (inst.prevWorldFromObject * vec4(p, 1.0)).xyz;
+}
+
 // Camera motion of the background (infinitely far: rotation only) at a pixel's unjittered uv.
 vec2 backgroundMotion(vec2 uv) {
   vec4 far = inverse(frame.unjitteredClipFromWorld) * vec4(uv * 2.0 - 1.0, kBackgroundDepth, 1.0);

@@ -125,6 +125,9 @@ struct GeometryRecord {
   // scenes have none, and every vertex of every scene would pay 8–16 bytes (14–29 % of Vertex) for
   // them. 16 bits hold 8- and 16-bit sources exactly and float ones to 1.5e-5.
   uint64_t colorAddress;
+  // Deforming geometry (render/deform.h): last frame's positions, vec3 per vertex, for the motion
+  // vectors; 0: the vertices do not move within the instance (motion is the instance's transform).
+  uint64_t prevPositionAddress;
 };
 
 // One per TLAS instance; gl_InstanceCustomIndexEXT is its row.
@@ -246,6 +249,9 @@ struct FrameConstants {
 
 // GPU culling (render/passes/cull.cpp, docs/techniques.md §23): one row per GpuScene::Draw, in order.
 RAYSTER_CONST uint kDrawSpheres = 1u;  // DrawRecord::flags: a sphere set (36-vertex boxes, count instances)
+// DrawRecord::flags: deforming geometry, whose bounds move with its pose: never culled (drawn in the
+// early phase).
+RAYSTER_CONST uint kDrawUnbounded = 2u;
 RAYSTER_CONST uint kCullGroupSize = 64u;
 struct DrawRecord {
   uint instance;  // InstanceRecord row
@@ -291,11 +297,35 @@ struct HizPush {
   uint pad0;
 };
 
+// Skinning and morph targets (render/deform.cpp, shaders/deform.comp.glsl): one dispatch per
+// deforming (instance, primitive), kDeformGroupSize vertices per group.
+RAYSTER_CONST uint kDeformGroupSize = 64u;
+// One vertex's influences in one set (scene::SkinInfluences): joints as 16-bit halves (low first).
+struct SkinInfluence {
+  uvec2 joints;
+  vec4 weights;
+};
+struct DeformPush {
+  uint64_t restVertices;   // Vertex[vertexCount]: the mesh's primitive, as uploaded
+  uint64_t outVertices;    // Vertex[vertexCount]: what this instance draws and traces
+  uint64_t prevPositions;  // vec3[vertexCount]: outVertices' positions of the frame before
+  uint64_t influences;     // SkinInfluence[influenceSets × vertexCount], set-major; 0: not skinned
+  uint64_t joints;         // mat4[]: the skin's joint matrices this frame (world × inverse bind)
+  uint64_t targets;        // vec3[targetCount × 3 × vertexCount]: target t's position, normal, tangent deltas
+  uint64_t weights;        // float[targetCount]: this frame's morph weights
+  uint vertexCount;
+  uint influenceSets;
+  uint targetCount;
+  uint keepPrevious;  // 0 (the first frame of a run): the previous positions are this frame's
+};
+
 #ifdef __cplusplus
 static_assert(sizeof(Vertex) == 56);
 static_assert(sizeof(SphereRecord) == 32);
 static_assert(sizeof(TextureSlot) == 32);
-static_assert(sizeof(GeometryRecord) == 40);
+static_assert(sizeof(GeometryRecord) == 48);
+static_assert(sizeof(SkinInfluence) == 24);
+static_assert(sizeof(DeformPush) == 72);
 static_assert(offsetof(GeometryRecord, colorAddress) == 32);
 static_assert(sizeof(InstanceRecord) == 208);
 static_assert(offsetof(InstanceRecord, firstGeometry) == 128);

@@ -84,6 +84,7 @@ TEST(SpirvReflect, PushBlocksAreTheSharedStructs) {
       {"shadow_map.vert", VK_SHADER_STAGE_VERTEX_BIT, sizeof(gpu::ShadowMapPush)},
       {"shadow_sphere.frag", VK_SHADER_STAGE_FRAGMENT_BIT, sizeof(gpu::ShadowSpherePush)},
       {"cull.comp", VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::CullPush)},
+      {"deform.comp", VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::DeformPush)},
       {"hiz.comp", VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::HizPush)},
       {"surface.comp", VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::SurfacePush)},
       {"shadow_temporal.comp", VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::TemporalPush)},

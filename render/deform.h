@@ -1,0 +1,68 @@
+#pragma once
+// Skinned and morphed meshes on the GPU (docs/techniques.md §5b). Every instance whose mesh deforms
+// (scene::deforms) gets vertex buffers of its own, written each frame by the "deform" compute pass
+// from the mesh's rest vertices, its skin's joint matrices and its morph weights, plus last frame's
+// positions for the motion vectors (GeometryRecord::prevPositionAddress). Its geometry rows point at
+// those buffers, so every pass — raster, traced and the path tracer — sees the pose; on devices
+// with ray tracing it has a BLAS of its own, refitted after each deformation and rebuilt every
+// kRebuildInterval refits (and at the first frame of a run), when a refit's boxes have grown loose.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "graph/graph.h"
+#include "rhi/accel.h"
+#include "rhi/resources.h"
+#include "scene/scene.h"
+#include "shaders/shared/types.h"
+
+namespace rayster::rhi {
+class Context;
+}
+
+namespace rayster::render {
+
+struct GpuScene;
+struct FrameInputs;
+
+struct Deformers {
+  // Refits between full rebuilds of a deforming BLAS.
+  static constexpr uint32_t kRebuildInterval = 16;
+
+  struct Primitive {
+    gpu::DeformPush push{};  // joints and weights addresses set per frame
+    rhi::Buffer vertices, previous, influences, targets;
+  };
+  struct Instance {
+    uint32_t sceneInstance = 0;
+    uint32_t firstGeometry = 0;                  // its GeometryRecord rows
+    uint32_t jointOffset = 0, jointCount = 0;    // mat4 rows of `joints`
+    uint32_t weightOffset = 0, weightCount = 0;  // float rows of `weights`
+    std::vector<Primitive> primitives;
+    std::vector<rhi::BlasGeometry> blasGeometries;
+    rhi::DynamicBlas blas;  // empty without ray tracing
+    uint32_t refits = 0;    // since the last build
+  };
+  std::vector<Instance> instances;
+  rhi::Buffer joints;   // host-visible mat4[], rewritten each frame
+  rhi::Buffer weights;  // host-visible float[], rewritten each frame
+};
+
+// Called by uploadScene for a scene instance that deforms: its vertex buffers (the rest pose until
+// the first deformation) and geometry rows, appended to `rows` after the mesh's own rows, which
+// start at `meshFirstGeometry`. Returns the instance's first geometry row.
+// `meshBlas`: the mesh's BLAS geometries (opacity and indices carry over).
+uint32_t addDeformer(rhi::Context& ctx, const scene::Scene& scene, uint32_t sceneInstance, uint32_t meshFirstGeometry,
+                     const std::vector<rhi::BlasGeometry>& meshBlas, std::vector<gpu::GeometryRecord>& rows,
+                     GpuScene& gs);
+// After every deformer was added: the joint and weight buffers and, with ray tracing, each
+// deformer's BLAS (built in the rest pose, so the TLAS can reference it before the first frame).
+void finishDeformers(rhi::Context& ctx, GpuScene& gs);
+
+// The frame's "deform" pass: writes the joint matrices and morph weights of `pose` (the scene as
+// animated now), deforms every deforming instance, then refits or rebuilds their BLASes. `first`:
+// the first frame of a run (no previous positions; BLASes rebuilt). Call before the TLAS update.
+void deformMeshes(graph::RenderGraph& graph, const FrameInputs& in, const scene::Scene& scene, const scene::Scene& pose,
+                  bool first, bool traced);
+
+}  // namespace rayster::render
