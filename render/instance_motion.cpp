@@ -14,6 +14,7 @@ void InstanceMotion::beginRun(const scene::Scene& scene, bool animated) {
     pose_.nodes = scene.nodes;
     pose_.instances = scene.instances;
     pose_.animations = scene.animations;
+    pose_.cameras = scene.cameras;
   }
   dirty_ = dirty_ || !overrides_.empty();
 }
@@ -30,6 +31,14 @@ void InstanceMotion::set(rhi::Context& ctx, GpuScene& gpu, uint32_t sceneInstanc
   gpu.instancesDynamic = true;
   overrides_[sceneInstance] = worldFromObject;
   dirty_ = true;
+}
+
+const scene::Camera& InstanceMotion::camera(const scene::Scene& scene, const scene::Camera& camera,
+                                            bool animated) const {
+  const ptrdiff_t i = &camera - scene.cameras.data();
+  if (!animated || camera.node < 0 || i < 0 || size_t(i) >= scene.cameras.size() || size_t(i) >= pose_.cameras.size())
+    return camera;
+  return pose_.cameras[size_t(i)];
 }
 
 glm::mat4 InstanceMotion::get(const scene::Scene& scene, uint32_t sceneInstance) const {

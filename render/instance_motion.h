@@ -33,6 +33,9 @@ class InstanceMotion {
   // Writes this frame's transforms (animation at `seconds`, then the edits); `first` frames have
   // no motion (prevWorldFromObject = worldFromObject).
   Update update(GpuScene& gpu, bool animated, float seconds, bool first);
+  // `camera` (one of scene.cameras) as animated now: where it follows an animated node, the
+  // posed copy; else `camera` itself.
+  const scene::Camera& camera(const scene::Scene& scene, const scene::Camera& camera, bool animated) const;
   // The scene as animated now (nodes, instances): the animated copy, else `scene` itself.
   const scene::Scene& pose(const scene::Scene& scene, bool animated) const { return animated ? pose_ : scene; }
   // Whether the TLAS instances changed since the last refit (and forgets it when `refitting`).

@@ -247,7 +247,7 @@ Result<RenderOutput> Renderer::Impl::renderPathTraced(const RenderSettings& s) {
   auto cam = findCamera(s);
   if (!cam) return cam.error();
   if (s.cameraPath || (scene.animated() && s.animate))
-    log::info("--mode pathtrace renders one image: the static camera and the pose at --time ({} s)", s.time);
+    log::info("--mode pathtrace renders one image: the camera and the pose at --time ({} s)", s.time);
   if (!pathTracer) pathTracer = std::make_unique<PathTracer>();
   beginExposure(s, **cam);
   const PathTraceResources r{ctx, gpu, pipelines, constants, nearest, linear, transients, histories, commands, timers};
@@ -275,6 +275,9 @@ Result<RenderOutput> Renderer::Impl::renderPathTraced(const RenderSettings& s) {
       log::info("exposure: auto, EV100 {:.2f} (metered by the hybrid)", exposure.ev100());
     }
   }
+  // A camera on an animated node: where the posing frame left it.
+  const scene::Camera posedCamera = motion.camera(scene, **cam, scene.animated() && !gpu.instanceRecords.empty());
+  *cam = &posedCamera;
   manyLights = false;
   auto out = pathTracer->render(s, r, exposure.exposure(), write);
   if (out) out->scene = sceneStats();

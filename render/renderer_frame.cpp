@@ -56,7 +56,10 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
       w[3] = glm::vec4(m.position, 1.0f);
       motion.set(ctx, gpu, i, w);
     }
-  const scene::Camera camera = control.camera ? *control.camera : s.cameraPath ? cameraOnPath(*r.cam, s, f) : *r.cam;
+  // The pose of this frame first: a camera on an animated node follows it.
+  const bool moved0 = motion.update(gpu, r.animated, s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0).moved;
+  const scene::Camera& base = motion.camera(scene, *r.cam, r.animated);
+  const scene::Camera camera = control.camera ? *control.camera : s.cameraPath ? cameraOnPath(base, s, f) : base;
   // A cut (the first frame of a run, a jump of the camera, or a listed frame) restarts every history.
   const bool cut = f == 0 || control.cut || isCameraCut(r.prevCamera, camera) ||
                    std::find(s.cuts.begin(), s.cuts.end(), f) != s.cuts.end();
@@ -71,7 +74,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   const FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, tlas};
   bool moving = s.cameraPath || control.moving;
   {
-    bool moved = motion.update(gpu, r.animated, s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0).moved;
+    bool moved = moved0;
     // Skinned and morphed meshes take the pose on the first frame and, while animated, every frame
     // (render/deform.h); playing, they move even where no instance transform does.
     const bool deform = gpu.deformers && (r.animated || f == 0);

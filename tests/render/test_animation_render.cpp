@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 
@@ -125,6 +127,50 @@ TEST(AnimationRender, MovingShadowLeavesNoTrail) {
     }
   EXPECT_GT(shadowed, pixels / 50) << "the slider's shadow should be in view";
   EXPECT_LT(ghosts, pixels / 200) << ghosts << " lit pixels still carry the old shadow";
+}
+
+}  // namespace
+}  // namespace rayster::test
+
+namespace rayster::test {
+namespace {
+
+// A camera on an animated node follows it: with the camera made a child of the slider, the slider
+// stays in the middle of the frame at t = 0 and t = 1 (it is left of it, then right, seen from a
+// fixed camera: PlayedFrameMatchesThePausedPose), in the hybrid and in the path tracer.
+TEST(AnimatedCamera, FollowsItsAnimatedNode) {
+  auto dir = testDir();
+  const std::filesystem::path fixed = writeAnimatedGltf(dir);
+  std::string text;
+  {
+    std::ifstream in(fixed);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  auto replace = [&](const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  replace(R"("scenes": [{"nodes": [0, 1, 2, 3]}])", R"("scenes": [{"nodes": [0, 1, 3]}])");
+  replace(R"("name": "slider", "translation": [-1.5, 0, 0]})",
+          R"("name": "slider", "translation": [-1.5, 0, 0], "children": [2]})");
+  const std::filesystem::path follow = dir / "follow.gltf";
+  std::ofstream(follow) << text;
+  ASSERT_FALSE(HasFailure());
+  auto redAt = [](const Image8& img, int x) {
+    const uint8_t* p = img.pixel(x, kH / 2);
+    return p[0] > 2 * p[1] + 30;
+  };
+  for (const char* mode : {"hybrid", "pathtrace"}) {
+    SCOPED_TRACE(mode);
+    const std::string args = follow.string() + " --taa off --frames 1 --pause --spp 8 --mode " + mode;
+    Image8 start = renderOk(dir, std::string(mode) + "0", args + " --time 0", kW, kH);
+    Image8 end = renderOk(dir, std::string(mode) + "1", args + " --time 1", kW, kH);
+    ASSERT_FALSE(HasFailure());
+    EXPECT_TRUE(redAt(start, kW / 2));
+    EXPECT_TRUE(redAt(end, kW / 2));
+    EXPECT_FALSE(redAt(end, kW * 9 / 10));
+  }
 }
 
 }  // namespace
