@@ -100,6 +100,9 @@ void addRenderFrameOptions(CLI::App* render, RenderArgs& a) {
                    "Exit with code 5 on a device without ray-tracing pipelines instead of rendering with "
                    "--mode raster (the default fallback, announced in one line)");
   render->add_option("--camera", ro.settings.camera, "Camera name from the scene");
+  render->add_option(
+      "--variant", ro.variant,
+      "Material variant by name (glTF KHR_materials_variants; an unknown name lists the scene's variants)");
   render->add_option("--time", ro.settings.time, "Animation time of the first frame, in seconds (default 0)");
   render->add_flag("--pause{false}", ro.settings.animate,
                    "Hold glTF animations at --time instead of playing them at --path-fps");

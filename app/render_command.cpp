@@ -184,6 +184,8 @@ int renderCommand(const RenderOptions& o) {
   auto loadStart = std::chrono::steady_clock::now();
   auto scene = scene::loadScene(o.scene);
   if (!scene) return fail(scene.error());
+  if (!o.variant.empty())
+    if (Status s = scene::selectVariant(*scene, o.variant); !s) return fail(s.error());
   log::info("loaded {} ({} triangles, {} instances) in {:.0f} ms", o.scene, scene->triangleCount(),
             scene->instances.size(),
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count());

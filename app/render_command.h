@@ -21,6 +21,7 @@ struct RenderOptions {
   // Whether --size / --frames (or --spp) were given: on a CPU device the others get smaller defaults.
   bool sizeGiven = false, framesGiven = false;
   std::string device;
+  std::string variant;  // --variant: a KHR_materials_variants name ("": the default materials)
   render::RenderSettings settings;
 };
 

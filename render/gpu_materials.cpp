@@ -68,6 +68,30 @@ SpecularSurfaces specularSurfaces(const scene::Scene& scene) {
   return out;
 }
 
+std::string layersApproximated(const scene::Scene& scene) {
+  bool coat = false, sheen = false, film = false, aniso = false, dispersion = false;
+  for (const scene::Material& m : scene.materials) {
+    if (m.unlit) continue;
+    coat = coat || m.hasClearcoat();
+    sheen = sheen || m.hasSheen();
+    film = film || m.hasIridescence();
+    aniso = aniso || m.hasAnisotropy();
+    dispersion = dispersion || (m.dispersion > 0.0f && m.transmission > 0.0f);
+  }
+  std::string names;
+  auto add = [&](bool on, const char* name) {
+    if (on) names += (names.empty() ? "" : ", ") + std::string(name);
+  };
+  add(coat, "clearcoat");
+  add(sheen, "sheen");
+  add(film, "iridescence");
+  add(aniso, "anisotropy");
+  add(dispersion, "dispersion");
+  if (names.empty()) return {};
+  return "scene '" + scene.name + "': the hybrid and raster modes render its materials' " + names +
+         " as the base layer alone (isotropic, no coat, sheen or film, one η); --mode pathtrace renders them";
+}
+
 void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs) {
   gs.bindless = std::make_unique<rhi::BindlessTextures>(ctx);
   for (const scene::Sampler& s : scene.samplers)
@@ -94,6 +118,42 @@ void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs)
     t.lodBias = float(0.5 * std::log2(texels * std::max(std::abs(double(ref.scale.x) * ref.scale.y), 1e-20)));
     return t;
   };
+
+  // The layer rows first: each layered material's record points at its row.
+  std::vector<gpu::MaterialLayers> layerRows;
+  std::vector<int32_t> layerOf;
+  for (const scene::Material& m : scene.materials) {
+    layerOf.push_back(m.layered() ? int32_t(layerRows.size()) : -1);
+    if (!m.layered()) continue;
+    gpu::MaterialLayers l{};
+    l.clearcoat = m.clearcoat;
+    l.clearcoatRoughness = m.clearcoatRoughness;
+    l.clearcoatNormalScale = m.clearcoatNormalScale;
+    l.sheenRoughness = m.sheenRoughness;
+    l.sheenColor = m.sheenColor;
+    l.iridescence = m.iridescence;
+    l.iridescenceIor = m.iridescenceIor;
+    l.iridescenceThicknessMin = m.iridescenceThicknessMin;
+    l.iridescenceThicknessMax = m.iridescenceThicknessMax;
+    l.anisotropyStrength = m.anisotropyStrength;
+    l.anisotropyRotation = m.anisotropyRotation;
+    l.dispersion = m.dispersion;
+    l.clearcoatTexture = slotFor(m.clearcoatTexture, false);
+    l.clearcoatRoughnessTexture = slotFor(m.clearcoatRoughnessTexture, false);
+    l.clearcoatNormalTexture = slotFor(m.clearcoatNormalTexture, false);
+    l.sheenColorTexture = slotFor(m.sheenColorTexture, true);
+    l.sheenRoughnessTexture = slotFor(m.sheenRoughnessTexture, false);
+    l.iridescenceTexture = slotFor(m.iridescenceTexture, false);
+    l.iridescenceThicknessTexture = slotFor(m.iridescenceThicknessTexture, false);
+    l.anisotropyTexture = slotFor(m.anisotropyTexture, false);
+    layerRows.push_back(l);
+  }
+  uint64_t layersAddress = 0;
+  if (!layerRows.empty()) {
+    gs.materialLayers = rhi::createBufferWithData(ctx, std::as_bytes(std::span(layerRows)),
+                                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "material layers");
+    layersAddress = gs.materialLayers.address();
+  }
 
   std::vector<gpu::MaterialRecord> rows;
   for (const scene::Material& m : scene.materials) {
@@ -123,6 +183,9 @@ void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs)
     r.emissiveTexture = slotFor(m.emissiveTexture, true);
     r.specularTexture = slotFor(m.specularTexture, false);  // A only: no sRGB (alpha is linear in both views)
     r.specularColorTexture = slotFor(m.specularColorTexture, true);
+    r.transmissionTexture = slotFor(m.transmissionTexture, false);
+    if (const int32_t l = layerOf[rows.size()]; l >= 0)
+      r.layers = layersAddress + uint64_t(l) * sizeof(gpu::MaterialLayers);
     rows.push_back(r);
   }
   if (rows.empty()) {
@@ -132,8 +195,9 @@ void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs)
     r.ior = 1.5f;
     r.specular = 1.0f;
     r.specularColor = glm::vec3(1.0f);
-    for (gpu::TextureSlot* t : {&r.baseColorTexture, &r.metallicRoughnessTexture, &r.normalTexture, &r.occlusionTexture,
-                                &r.emissiveTexture, &r.specularTexture, &r.specularColorTexture})
+    for (gpu::TextureSlot* t :
+         {&r.baseColorTexture, &r.metallicRoughnessTexture, &r.normalTexture, &r.occlusionTexture, &r.emissiveTexture,
+          &r.specularTexture, &r.specularColorTexture, &r.transmissionTexture})
       *t = {gpu::kNoTexture, 0, 0, 0, glm::vec2(0), glm::vec2(1)};
     rows.push_back(r);
   }

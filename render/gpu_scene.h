@@ -48,6 +48,7 @@ struct GpuScene {
   std::vector<rhi::Buffer> indexBuffers;   // one per primitive (SphereRecords for sphere sets)
   std::vector<rhi::Buffer> colorBuffers;   // one per primitive with vertex colours (RGBA16 UNORM)
   rhi::Buffer geometries, instances, materials, lights;
+  rhi::Buffer materialLayers;  // gpu::MaterialLayers of the layered materials (MaterialRecord::layers)
   std::vector<rhi::Image> textures;
   std::vector<rhi::Sampler> samplers;
   std::unique_ptr<rhi::BindlessTextures> bindless;
@@ -103,6 +104,11 @@ struct SpecularSurfaces {
   bool transmission = false;
 };
 SpecularSurfaces specularSurfaces(const scene::Scene& scene);
+
+// One line saying which material layers of the scene (clearcoat, sheen, iridescence, anisotropy,
+// dispersion) the hybrid and raster modes render only as their base, for the path tracer renders
+// them; empty when the scene has none.
+std::string layersApproximated(const scene::Scene& scene);
 
 // Materials and textures (render/gpu_materials.cpp).
 void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs);

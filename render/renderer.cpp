@@ -385,8 +385,18 @@ Result<std::unique_ptr<Renderer>> Renderer::create(rhi::Context& ctx, const scen
   log::debug("scene '{}': {} triangles, BLAS {} KiB (compacted from {} KiB), built in {:.1f} ms", scene.name,
              gpu->triangleCount, gpu->accelStats.compactedBytes / 1024, gpu->accelStats.builtBytes / 1024,
              gpu->accelBuildMs);
-  return std::unique_ptr<Renderer>(new Renderer(std::make_unique<Impl>(ctx, scene, std::move(gpu.value()))));
+  auto impl = std::make_unique<Impl>(ctx, scene, std::move(gpu.value()));
+  impl->layerWarning = layersApproximated(scene);
+  return std::unique_ptr<Renderer>(new Renderer(std::move(impl)));
 }
+
+namespace {
+void warnLayersOnce(std::string& warning) {
+  if (warning.empty()) return;
+  log::warn("{}", warning);
+  warning.clear();
+}
+}  // namespace
 
 Result<RenderOutput> Renderer::render(const RenderSettings& settings) {
   // Callers fall back to the raster mode themselves (the CLI says so in one line).
@@ -394,12 +404,14 @@ Result<RenderOutput> Renderer::render(const RenderSettings& settings) {
     return makeError(ExitCode::MissingCapability, "{} has no ray-tracing pipelines: --mode {} needs them",
                      impl_->ctx.info().name, modeName(settings.mode));
   if (settings.mode == Mode::PathTrace) return impl_->renderPathTraced(settings);
+  warnLayersOnce(impl_->layerWarning);
   return impl_->render(settings);
 }
 
 Status Renderer::beginRun(const RenderSettings& settings) {
   if (settings.mode != Mode::Hybrid)
     return makeError(ExitCode::BadArguments, "--mode {} is not implemented yet", modeName(settings.mode));
+  warnLayersOnce(impl_->layerWarning);
   Status begun = impl_->beginRun(settings);
   if (begun) impl_->run->adaptExposure = true;  // an interactive run: the exposure follows the view
   return begun;

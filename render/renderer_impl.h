@@ -57,6 +57,9 @@ struct Renderer::Impl {
   rhi::Context& ctx;
   const scene::Scene& scene;
   GpuScene gpu;
+  // What the hybrid and raster modes approximate of the scene's material layers (empty: nothing);
+  // said once, on the first frame of such a mode (layersApproximated(), render/gpu_materials.cpp).
+  std::string layerWarning;
   rhi::PipelineLibrary pipelines;  // created on first use by the passes (rhi/pipeline_library.h)
   rhi::Sampler nearest, linear;
   rhi::Buffer constants;

@@ -25,10 +25,12 @@ constexpr int kMaxJsonDepth = 64;
 
 // Extensions whose meaning Rayster implements (or, for KHR_mesh_quantization, that only widen
 // the accessor types the reader already handles).
-constexpr std::array<std::string_view, 9> kSupportedExtensions = {
-    "KHR_lights_punctual",        "KHR_texture_transform", "KHR_materials_emissive_strength",
-    "KHR_materials_transmission", "KHR_materials_ior",     "KHR_materials_volume",
-    "KHR_materials_specular",     "KHR_mesh_quantization", "KHR_materials_unlit"};
+constexpr std::array<std::string_view, 15> kSupportedExtensions = {
+    "KHR_lights_punctual",        "KHR_texture_transform",    "KHR_materials_emissive_strength",
+    "KHR_materials_transmission", "KHR_materials_ior",        "KHR_materials_volume",
+    "KHR_materials_specular",     "KHR_mesh_quantization",    "KHR_materials_unlit",
+    "KHR_materials_clearcoat",    "KHR_materials_sheen",      "KHR_materials_iridescence",
+    "KHR_materials_anisotropy",   "KHR_materials_dispersion", "KHR_materials_variants"};
 
 bool supported(std::string_view name) {
   return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), name) != kSupportedExtensions.end();
@@ -242,10 +244,10 @@ std::vector<int> imageMaterials(const Json& root) {
       mark(member(*pbr, "metallicRoughnessTexture"), m);
     }
     for (const char* slot : {"normalTexture", "occlusionTexture", "emissiveTexture"}) mark(member(material, slot), m);
-    // The extensions' texture slots that gltf_materials.cpp reads: keep the two lists in step.
-    const Json* extensions = member(material, "extensions");
-    if (const Json* specular = extensions ? member(*extensions, "KHR_materials_specular") : nullptr)
-      for (const char* slot : {"specularTexture", "specularColorTexture"}) mark(member(*specular, slot), m);
+    // The extensions' texture slots that gltf_material_layers.cpp reads.
+    if (const Json* extensions = member(material, "extensions"))
+      for (const ExtensionTextureSlot& s : kExtensionTextureSlots)
+        if (const Json* ext = member(*extensions, s.extension)) mark(member(*ext, s.slot), m);
   }
   return out;
 }

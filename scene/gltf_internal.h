@@ -91,6 +91,41 @@ Status validateModel(const tinygltf::Model& model, const std::string& file);
 Status convertMaterials(const tinygltf::Model& model, const std::string& file, const ImageDecodeState& images,
                         Scene& scene);
 
+// What converting a material needs: `textureMap` maps glTF texture indices to scene textures (-1
+// where unusable).
+struct MaterialContext {
+  const tinygltf::Model& model;
+  const std::string& file;
+  const std::vector<int32_t>& textureMap;
+};
+// A textureInfo inside a material extension (tinygltf parses only the core ones): index, texCoord
+// and its own KHR_texture_transform; none when `key` is absent.
+TextureRef extensionTexture(const MaterialContext& ctx, const tinygltf::Value& ext, const char* key,
+                            const std::string& material);
+// The extension object `name` of an extension map, or null.
+const tinygltf::Value* extension(const tinygltf::ExtensionMap& extensions, const char* name);
+// A finite float from a number, else `fallback`.
+float finiteOr(double value, float fallback);
+
+// ---- gltf_material_layers.cpp: the KHR_materials_* layers and KHR_materials_variants ----
+
+// The texture slots of the material extensions Rayster reads, by extension: the images they show
+// are decoded (gltf_document.cpp), the rest skipped.
+struct ExtensionTextureSlot {
+  const char* extension;
+  const char* slot;
+};
+extern const std::vector<ExtensionTextureSlot> kExtensionTextureSlots;
+
+// Transmission and thickness textures, clearcoat, sheen, iridescence, anisotropy and dispersion.
+void readMaterialLayers(const MaterialContext& ctx, const tinygltf::Material& src, Material& m);
+// KHR_materials_variants: the root's variant names into scene.variants.
+Status readVariantNames(const tinygltf::Model& model, const std::string& file, Scene& scene);
+// A primitive's KHR_materials_variants mappings into prim.variantMaterials (prim.material is set).
+// `where` names the primitive's JSON path for messages.
+Status readVariantMappings(const tinygltf::Primitive& src, const Scene& scene, size_t materialCount,
+                           const std::string& file, const std::string& where, Primitive& prim);
+
 // ---- gltf_skins.cpp ----
 
 // Reads the skins the displayed scene's instances use into scene.skins (glTF skin i becomes

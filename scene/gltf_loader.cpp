@@ -339,6 +339,7 @@ Result<Scene> loadGltf(const fs::path& path) {
   Scene scene;
   scene.name = path.stem().string();
   RAYSTER_TRY(gltf::convertMaterials(*model, file, images, scene));
+  RAYSTER_TRY(gltf::readVariantNames(*model, file, scene));
   std::vector<int> sceneNodeOf;
   RAYSTER_TRY(gltf::convertNodes(*model, file, scene, sceneNodeOf));
   RAYSTER_TRY(gltf::convertSkins(*model, file, sceneNodeOf, scene));

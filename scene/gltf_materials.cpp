@@ -15,11 +15,6 @@ namespace {
 constexpr int kMaxImageSide = 16384;
 constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;
 
-float finiteOr(double value, float fallback) {
-  const float f = float(value);
-  return std::isfinite(f) ? f : fallback;
-}
-
 template <int N>
 glm::vec<N, float> vectorOr(const std::vector<double>& values, glm::vec<N, float> fallback) {
   if (values.size() != size_t(N)) return fallback;
@@ -39,11 +34,6 @@ glm::vec<N, float> valueVectorOr(const tinygltf::Value& object, const char* key,
     v[i] = e.IsNumber() ? finiteOr(e.GetNumberAsDouble(), fallback[i]) : fallback[i];
   }
   return v;
-}
-
-const tinygltf::Value* extension(const tinygltf::ExtensionMap& extensions, const char* name) {
-  auto it = extensions.find(name);
-  return it != extensions.end() && it->second.IsObject() ? &it->second : nullptr;
 }
 
 Sampler convertSampler(const tinygltf::Sampler& src) {
@@ -71,13 +61,6 @@ Sampler convertSampler(const tinygltf::Sampler& src) {
   return s;
 }
 
-// `textureMap` maps glTF texture indices to scene textures (-1 where unusable).
-struct MaterialContext {
-  const tinygltf::Model& model;
-  const std::string& file;
-  const std::vector<int32_t>& textureMap;
-};
-
 TextureRef textureRef(const MaterialContext& ctx, int index, int texCoord, const tinygltf::ExtensionMap& extensions,
                       const std::string& material) {
   TextureRef ref;
@@ -100,25 +83,6 @@ TextureRef textureRef(const MaterialContext& ctx, int index, int texCoord, const
   }
   ref.texCoord = uint32_t(uvSet);
   return ref;
-}
-
-// A textureInfo inside a material extension (tinygltf parses only the core ones): index, texCoord
-// and its own KHR_texture_transform.
-TextureRef extensionTexture(const MaterialContext& ctx, const tinygltf::Value& ext, const char* key,
-                            const std::string& material) {
-  if (!ext.Has(key) || !ext.Get(key).IsObject()) return {};
-  const tinygltf::Value& info = ext.Get(key);
-  tinygltf::ExtensionMap extensions;
-  if (info.Has("extensions") && info.Get("extensions").IsObject()) {
-    const tinygltf::Value& e = info.Get("extensions");
-    for (const std::string& name : e.Keys()) extensions[name] = e.Get(name);
-  }
-  // Numbers from the file, kept in int range before the conversion (textureRef checks the rest).
-  auto integer = [&](const char* name, double fallback) {
-    const double v = numberOr(info, name, fallback);
-    return v >= -1.0 && v < 1e9 ? int(v) : int(1e9);
-  };
-  return textureRef(ctx, integer("index", -1), integer("texCoord", 0), extensions, material);
 }
 
 Material convertMaterial(const MaterialContext& ctx, const tinygltf::Material& src, size_t index) {
@@ -173,6 +137,7 @@ Material convertMaterial(const MaterialContext& ctx, const tinygltf::Material& s
   // Unlit ignores every other property but the base colour (and alpha): the renderer reads only
   // those when the flag is set.
   m.unlit = extension(src.extensions, "KHR_materials_unlit") != nullptr;
+  readMaterialLayers(ctx, src, m);
   return m;
 }
 
@@ -202,6 +167,33 @@ Result<ImageData> convertImage(const tinygltf::Image& src, size_t index, const s
 }
 
 }  // namespace
+
+float finiteOr(double value, float fallback) {
+  const float f = float(value);
+  return std::isfinite(f) ? f : fallback;
+}
+
+const tinygltf::Value* extension(const tinygltf::ExtensionMap& extensions, const char* name) {
+  auto it = extensions.find(name);
+  return it != extensions.end() && it->second.IsObject() ? &it->second : nullptr;
+}
+
+TextureRef extensionTexture(const MaterialContext& ctx, const tinygltf::Value& ext, const char* key,
+                            const std::string& material) {
+  if (!ext.Has(key) || !ext.Get(key).IsObject()) return {};
+  const tinygltf::Value& info = ext.Get(key);
+  tinygltf::ExtensionMap extensions;
+  if (info.Has("extensions") && info.Get("extensions").IsObject()) {
+    const tinygltf::Value& e = info.Get("extensions");
+    for (const std::string& name : e.Keys()) extensions[name] = e.Get(name);
+  }
+  // Numbers from the file, kept in int range before the conversion (textureRef checks the rest).
+  auto integer = [&](const char* name, double fallback) {
+    const double v = numberOr(info, name, fallback);
+    return v >= -1.0 && v < 1e9 ? int(v) : int(1e9);
+  };
+  return textureRef(ctx, integer("index", -1), integer("texCoord", 0), extensions, material);
+}
 
 double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
   if (!object.IsObject() || !object.Has(key)) return fallback;

@@ -313,6 +313,8 @@ Result<Primitive> convertPrimitive(MeshBuilder& builder, const tinygltf::Mesh& m
   } else {
     prim.material = defaultMaterial(builder);
   }
+  RAYSTER_TRY(readVariantMappings(src, builder.scene, model.materials.size(), file,
+                                  fmt::format("meshes[{}].primitives[{}]", meshIndex, primIndex), prim));
   return prim;
 }
 

@@ -1,5 +1,6 @@
 #include "scene/merge.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -27,15 +28,27 @@ void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
   const size_t meshBase = dst.meshes.size(), materialBase = dst.materials.size(), imageBase = dst.images.size(),
                samplerBase = dst.samplers.size(), textureBase = dst.textures.size();
 
+  // Variants of the same name in two models are one variant of the scene.
+  std::vector<uint32_t> variantOf(src.variants.size());
+  for (size_t v = 0; v < src.variants.size(); ++v) {
+    auto it = std::find(dst.variants.begin(), dst.variants.end(), src.variants[v]);
+    variantOf[v] = uint32_t(it - dst.variants.begin());
+    if (it == dst.variants.end()) dst.variants.push_back(src.variants[v]);
+  }
   for (Mesh& mesh : src.meshes) {
-    for (Primitive& prim : mesh.primitives) prim.material = rebase(prim.material, materialBase);
+    for (Primitive& prim : mesh.primitives) {
+      prim.material = rebase(prim.material, materialBase);
+      prim.defaultMaterial = rebase(prim.defaultMaterial, materialBase);
+      for (auto& [variant, material] : prim.variantMaterials) {
+        variant = variantOf[variant];
+        material = rebase(material, materialBase);
+      }
+    }
     for (Sphere& sphere : mesh.spheres) sphere.material = rebase(sphere.material, materialBase);
     dst.meshes.push_back(std::move(mesh));
   }
   for (Material& m : src.materials) {
-    for (TextureRef* ref : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
-                            &m.emissiveTexture, &m.specularTexture, &m.specularColorTexture})
-      rebase(*ref, textureBase);
+    for (TextureRef* ref : m.textureRefs()) rebase(*ref, textureBase);
     dst.materials.push_back(std::move(m));
   }
   for (ImageData& image : src.images) dst.images.push_back(std::move(image));

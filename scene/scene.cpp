@@ -1,5 +1,6 @@
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "scene/skinning.h"
@@ -45,6 +46,10 @@ Status validatePrimitive(const Scene& scene, const Mesh& mesh, size_t meshIndex,
   if (prim.material >= scene.materials.size())
     return makeError(ExitCode::BadInput, "{}: material {} out of range ({} materials)", where, prim.material,
                      scene.materials.size());
+  for (const auto& [variant, material] : prim.variantMaterials)
+    if (variant >= scene.variants.size() || material >= scene.materials.size() ||
+        prim.defaultMaterial >= scene.materials.size())
+      return makeError(ExitCode::BadInput, "{}: a material variant mapping is out of range", where);
   for (size_t s = 0; s < prim.influences.size(); ++s)
     if (prim.influences[s].joints.size() != vertexCount || prim.influences[s].weights.size() != vertexCount)
       return makeError(ExitCode::BadInput, "{}: skin influence set {} has {}/{} joints/weights for {} positions", where,
@@ -168,9 +173,7 @@ Status validate(const Scene& scene) {
   }
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     const Material& mat = scene.materials[i];
-    for (const TextureRef* t :
-         {&mat.baseColorTexture, &mat.metallicRoughnessTexture, &mat.normalTexture, &mat.occlusionTexture,
-          &mat.emissiveTexture, &mat.specularTexture, &mat.specularColorTexture})
+    for (const TextureRef* t : mat.textureRefs())
       if (t->valid() && (size_t(t->texture) >= scene.textures.size() || t->texCoord > 1))
         return makeError(ExitCode::BadInput, "{}: material {} '{}' uses a missing texture or UV set", sceneName, i,
                          mat.name);
@@ -205,6 +208,30 @@ Status validate(const Scene& scene) {
         glm::dot(camera.target - camera.position, camera.target - camera.position) == 0.0f)
       return makeError(ExitCode::BadInput, "{}: camera {} '{}' has a degenerate view", sceneName, i, camera.name);
   }
+  return okStatus();
+}
+
+Status selectVariant(Scene& scene, const std::string& name) {
+  uint32_t variant = 0;
+  if (!name.empty()) {
+    auto it = std::find(scene.variants.begin(), scene.variants.end(), name);
+    if (it == scene.variants.end()) {
+      std::string names;
+      for (const std::string& v : scene.variants) names += (names.empty() ? "'" : ", '") + v + "'";
+      return makeError(ExitCode::BadInput, "{}: no material variant '{}' ({})",
+                       scene.name.empty() ? std::string("scene") : scene.name, name,
+                       names.empty() ? std::string("the scene has no variants") : "variants: " + names);
+    }
+    variant = uint32_t(it - scene.variants.begin());
+  }
+  for (Mesh& mesh : scene.meshes)
+    for (Primitive& prim : mesh.primitives) {
+      if (prim.variantMaterials.empty()) continue;  // defaultMaterial is only kept where variants exist
+      prim.material = prim.defaultMaterial;
+      if (name.empty()) continue;
+      for (const auto& [v, material] : prim.variantMaterials)
+        if (v == variant) prim.material = material;
+    }
   return okStatus();
 }
 

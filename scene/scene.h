@@ -1,6 +1,7 @@
 #pragma once
 // The CPU scene model every loader produces and every renderer consumes. Plain data, no Vulkan:
 // render/ uploads it, tests inspect it directly.
+#include <array>
 #include <cfloat>
 #include <cstddef>
 #include <cstdint>
@@ -57,6 +58,69 @@ struct Material {
   // KHR_materials_unlit: the surface shows its base colour (× vertex colour × texture) as emitted
   // radiance and scatters no light (docs in render/gpu_materials.cpp).
   bool unlit = false;
+  TextureRef transmissionTexture;  // KHR_materials_transmission: R × transmission
+  TextureRef thicknessTexture;     // KHR_materials_volume: G × thickness
+
+  // The layers on top of the base (docs/materials.md); each is off at its default.
+  // KHR_materials_clearcoat: a GGX dielectric coat (η 1.5) with its own roughness and normal.
+  float clearcoat = 0.0f;                // [0, 1]
+  float clearcoatRoughness = 0.0f;       // [0, 1]
+  TextureRef clearcoatTexture;           // linear: R × clearcoat
+  TextureRef clearcoatRoughnessTexture;  // linear: G × clearcoatRoughness
+  TextureRef clearcoatNormalTexture;     // linear, tangent space; none: the geometric shading normal
+  float clearcoatNormalScale = 1.0f;
+  // KHR_materials_sheen: a Charlie-distribution retro-reflective layer (cloth, velvet).
+  glm::vec3 sheenColor{0.0f};        // linear, [0, 1]
+  float sheenRoughness = 0.0f;       // [0, 1]
+  TextureRef sheenColorTexture;      // sRGB: RGB × sheenColor
+  TextureRef sheenRoughnessTexture;  // linear: A × sheenRoughness
+  // KHR_materials_iridescence: a thin film (Belcour and Barla 2017) on the specular lobe.
+  float iridescence = 0.0f;                // [0, 1]
+  float iridescenceIor = 1.3f;             // >= 1
+  float iridescenceThicknessMin = 100.0f;  // nm
+  float iridescenceThicknessMax = 400.0f;  // nm
+  TextureRef iridescenceTexture;           // linear: R × iridescence
+  TextureRef iridescenceThicknessTexture;  // linear: G mixes min → max (none: max)
+  // KHR_materials_anisotropy: GGX stretched along a direction in the tangent plane.
+  float anisotropyStrength = 0.0f;  // [0, 1]
+  float anisotropyRotation = 0.0f;  // radians, counter-clockwise from the tangent
+  TextureRef anisotropyTexture;     // linear: RG direction in [-1, 1]², B × strength
+  // KHR_materials_dispersion: 20 / Abbe number; 0: the same η for every wavelength.
+  float dispersion = 0.0f;
+
+  bool hasClearcoat() const { return clearcoat > 0.0f; }
+  bool hasSheen() const { return sheenColor != glm::vec3(0.0f); }
+  bool hasIridescence() const { return iridescence > 0.0f; }
+  bool hasAnisotropy() const { return anisotropyStrength > 0.0f; }
+  // Whether any layer above applies (the GPU gets a layer record only then).
+  bool layered() const { return !unlit && (hasClearcoat() || hasSheen() || hasIridescence() || hasAnisotropy()); }
+
+  // Every texture slot, for code that treats them alike (merging scenes, counting uses).
+  std::array<TextureRef*, 17> textureRefs() {
+    return {&baseColorTexture,
+            &metallicRoughnessTexture,
+            &normalTexture,
+            &occlusionTexture,
+            &emissiveTexture,
+            &specularTexture,
+            &specularColorTexture,
+            &transmissionTexture,
+            &thicknessTexture,
+            &clearcoatTexture,
+            &clearcoatRoughnessTexture,
+            &clearcoatNormalTexture,
+            &sheenColorTexture,
+            &sheenRoughnessTexture,
+            &iridescenceTexture,
+            &iridescenceThicknessTexture,
+            &anisotropyTexture};
+  }
+  std::array<const TextureRef*, 17> textureRefs() const {
+    std::array<const TextureRef*, 17> out;
+    const auto refs = const_cast<Material*>(this)->textureRefs();
+    for (size_t i = 0; i < refs.size(); ++i) out[i] = refs[i];
+    return out;
+  }
 
   // glTF: a single-sided material's back faces are not rendered, and rays ignore them. Transmissive
   // materials are the exception for rays: a refracted ray leaves a closed volume through its back
@@ -108,6 +172,10 @@ struct Primitive {
   std::vector<glm::vec4> colors;    // COLOR_0, linear RGBA in [0, 1], multiplies the base colour; empty: white
   std::vector<uint32_t> indices;    // triangle list, counter-clockwise seen from the front
   uint32_t material = 0;
+  // KHR_materials_variants: (variant, material) pairs, indices into Scene::variants and
+  // Scene::materials; selectVariant() applies one. `defaultMaterial` is `material` as loaded.
+  std::vector<std::pair<uint32_t, uint32_t>> variantMaterials;
+  uint32_t defaultMaterial = 0;
   std::vector<SkinInfluences> influences;  // JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1, …; empty: not skinned
   std::vector<MorphTarget> targets;        // as many as the mesh's morph weights
 };
@@ -254,6 +322,7 @@ struct Scene {
   std::vector<SceneNode> nodes;  // the hierarchy behind animated instances; may be empty
   std::vector<Skin> skins;
   std::vector<Animation> animations;  // all play together (see scene/animation.h)
+  std::vector<std::string> variants;  // KHR_materials_variants names (Primitive::variantMaterials)
   std::vector<Light> lights;
   std::vector<Camera> cameras;
   std::vector<CameraKey> cameraPath;
@@ -267,5 +336,10 @@ struct Scene {
 // Checks what the renderer would otherwise crash on or silently mis-draw. Failures are
 // ExitCode::BadInput with a message naming the mesh/primitive/instance.
 Status validate(const Scene& scene);
+
+// KHR_materials_variants: gives every primitive the material the variant `name` maps it to, and
+// the rest their default material; "" restores every default. An unknown name is
+// ExitCode::BadInput naming the variants the scene has.
+Status selectVariant(Scene& scene, const std::string& name);
 
 }  // namespace rayster::scene

@@ -15,6 +15,8 @@
 #include "shared/vndf.h"
 #include "lib/pt_lights.glsl"
 #include "lib/pt_bsdf.glsl"
+#include "shared/sheen.h"
+#include "lib/layers.glsl"
 
 // The reference: progressive unidirectional path tracing (docs/techniques.md §21), one sample per pixel per
 // frame, accumulated as a running mean (and mean square, for the variance) in fp32. At every vertex,
@@ -61,14 +63,20 @@ struct PathVertex {
   SurfaceBsdf bsdf;
   float pSpec;
   float opaqueShare;  // 1 − the glass lobe's share: NEE estimates this part of the BSDF
+  bool layered;       // the material has layers (lib/layers.glsl): `layers` holds them
+  SurfaceLayers layers;
 };
 
 // Density with which BSDF sampling would have produced l (the opaque lobes).
-float bsdfPdf(PathVertex x, vec3 l) { return x.opaqueShare * opaquePdf(x.bsdf, x.pSpec, x.n, x.v, l); }
+float bsdfPdf(PathVertex x, vec3 l) {
+  if (x.layered) return x.opaqueShare * layeredPdf(x.bsdf, x.layers, x.n, x.v, l);
+  return x.opaqueShare * opaquePdf(x.bsdf, x.pSpec, x.n, x.v, l);
+}
 
 // f·cos for a light direction, 0 below either normal.
 vec3 lightBsdf(PathVertex x, vec3 l) {
   if (dot(l, x.ng) <= 0.0) return vec3(0.0);
+  if (x.layered) return evalLayeredCos(x.bsdf, x.layers, x.n, x.v, l);
   return evalBsdfCos(x.bsdf, x.n, x.v, l, 0.0);
 }
 
@@ -140,6 +148,7 @@ vec3 escaped(vec3 dir, float pdf) {
 
 vec3 tracePath(vec3 origin, vec3 dir, inout uint rng) {
   vec3 radiance = vec3(0.0), beta = vec3(1.0);
+  int channel = -1;  // the colour channel a dispersive refraction picked for the path; -1: all
   float pdf = 0.0;  // density of the last BSDF sample; 0: the camera ray or a glass event (no MIS)
   for (uint depth = 0u;; ++depth) {
     payload.t = -1.0;
@@ -186,17 +195,40 @@ vec3 tracePath(vec3 origin, vec3 dir, inout uint rng) {
     x.bsdf = makeBsdf(baseColor, metallic, roughness, gb.specular, m.ior);
     x.pSpec = specularProbability(x.bsdf, max(dot(x.n, x.v), 1e-4));
     x.opaqueShare = 1.0 - glassShare;
+    x.layered = m.layers != 0ul;
+    if (x.layered) {
+      vec3 nFace = normalize(sp.normal);
+      if (dot(nFace, x.ng) < 0.0) nFace = -nFace;
+      x.layers = evaluateLayers(m, sp, x.n, nFace, roughness);
+    }
     if (x.opaqueShare > 0.0) radiance += beta * x.opaqueShare * nextEvent(x, rng);
     if (depth + 1u >= frame.maxDepth) break;
 
     vec3 u = vec3(rnd(rng), rnd(rng), rnd(rng));
     vec3 next;
     if (rnd(rng) < glassShare) {
+      // Dispersion (KHR_materials_dispersion): the path follows one colour channel from its first
+      // dispersive glass on, picked uniformly (× 3 keeps the estimate unbiased).
+      float ior = m.ior;
+      if (x.layered && x.layers.dispersion > 0.0) {
+        if (channel < 0) {
+          channel = min(int(rnd(rng) * 3.0), 2);
+          vec3 only = vec3(0.0);
+          only[channel] = 3.0;
+          beta *= only;
+        }
+        ior = dispersedIor(m.ior, x.layers.dispersion, channel);
+      }
       vec3 weight;
-      if (!sampleDielectric(x.n, x.v, roughness, m.ior, entering, thin, baseColor, gb.specular, u, next, weight))
-        break;
+      if (!sampleDielectric(x.n, x.v, roughness, ior, entering, thin, baseColor, gb.specular, u, next, weight)) break;
       beta *= weight;
       pdf = 0.0;
+    } else if (x.layered) {
+      next = sampleLayered(x.bsdf, x.layers, x.n, x.v, u);
+      float p = layeredPdf(x.bsdf, x.layers, x.n, x.v, next);
+      if (dot(next, x.ng) <= 0.0 || p <= 0.0) break;
+      beta *= evalLayeredCos(x.bsdf, x.layers, x.n, x.v, next) / p;
+      pdf = x.opaqueShare * p;
     } else {
       next = sampleOpaque(x.bsdf, x.pSpec, x.n, x.v, u);
       float p = opaquePdf(x.bsdf, x.pSpec, x.n, x.v, next);

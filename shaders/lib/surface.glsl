@@ -115,7 +115,10 @@ GBufferValues evaluateSurface(MaterialRecord m, SurfacePoint sp, vec3 cameraPos)
 
   o.normals = vec4(octEncode(ns), octEncode(ng));
   o.albedo = vec4(linearToSrgb(base.rgb), ao);
-  o.material = vec4(roughness, metallic, m.transmission, packIor(m.ior, m.thickness <= 0.0));
+  // KHR_materials_volume's thickness (and its texture) is for rasterisers that cannot measure a
+  // volume; rays measure it, so only "thin-walled or not" (thickness 0) matters here.
+  float transmission = m.transmission * SAMPLE_SLOT(m.transmissionTexture, sp.uv0, sp.uv1, vec4(1.0)).r;
+  o.material = vec4(roughness, metallic, transmission, packIor(m.ior, m.thickness <= 0.0));
   o.emissive = vec4(emissive, m.ior);  // the exact ior (fp16): material.a holds only 7 bits of it
   o.specular = vec4(tint, clamp(strength, 0.0, 1.0));
   return o;

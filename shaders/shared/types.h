@@ -164,6 +164,38 @@ struct MaterialRecord {
   TextureSlot emissiveTexture;       // sRGB view
   TextureSlot specularTexture;       // KHR_materials_specular: A × specular
   TextureSlot specularColorTexture;  // sRGB view: RGB × specularColor
+  TextureSlot transmissionTexture;   // R × transmission
+  // MaterialLayers (clearcoat, sheen, iridescence, anisotropy, dispersion), or 0: none of them.
+  uint64_t layers;
+  uint pad0;
+  uint pad1;
+};
+
+// The layers above the base of a material (scene::Material; docs/materials.md), one row per
+// layered material, reached through MaterialRecord::layers.
+struct MaterialLayers {
+  float clearcoat;
+  float clearcoatRoughness;
+  float clearcoatNormalScale;
+  float sheenRoughness;
+  vec3 sheenColor;  // linear
+  float iridescence;
+  float iridescenceIor;
+  float iridescenceThicknessMin;  // nm
+  float iridescenceThicknessMax;  // nm
+  float anisotropyStrength;
+  float anisotropyRotation;  // radians
+  float dispersion;          // 20 / Abbe number
+  uint pad0;
+  uint pad1;
+  TextureSlot clearcoatTexture;           // R
+  TextureSlot clearcoatRoughnessTexture;  // G
+  TextureSlot clearcoatNormalTexture;
+  TextureSlot sheenColorTexture;            // sRGB view: RGB
+  TextureSlot sheenRoughnessTexture;        // A
+  TextureSlot iridescenceTexture;           // R
+  TextureSlot iridescenceThicknessTexture;  // G
+  TextureSlot anisotropyTexture;            // RG direction, B strength
 };
 
 struct LightRecord {
@@ -331,7 +363,9 @@ static_assert(sizeof(InstanceRecord) == 208);
 static_assert(offsetof(InstanceRecord, firstGeometry) == 128);
 static_assert(offsetof(MaterialRecord, baseColorTexture) == 96);
 static_assert(offsetof(MaterialRecord, specularTexture) == 256);
-static_assert(sizeof(MaterialRecord) == 320);
+static_assert(offsetof(MaterialRecord, layers) == 352);
+static_assert(sizeof(MaterialRecord) == 368);
+static_assert(sizeof(MaterialLayers) == 320);
 static_assert(sizeof(LightRecord) == 64);
 static_assert(offsetof(FrameConstants, size) == 160);
 static_assert(offsetof(FrameConstants, environment) == 192);

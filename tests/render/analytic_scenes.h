@@ -38,6 +38,10 @@ struct MaterialSpec {
   std::string specularColorTexture;  // a PNG in the scene's folder (RGB, sRGB), or none
   std::string alphaMode = "OPAQUE";
   float alphaCutoff = 0.5f;
+  // More material extensions, as JSON members of "extensions" (e.g. a KHR_materials_clearcoat
+  // object); "$TEX" in it becomes the index of the texture `layerTexture` (a PNG in the folder).
+  std::string layers;
+  std::string layerTexture;
 };
 
 inline MaterialSpec blackAbsorber() { return {glm::vec3(0.0f), 1.0f, 1.0f}; }  // black rough metal: reflects nothing
@@ -153,6 +157,12 @@ inline void writeGltf(const std::filesystem::path& dir, const std::string& name,
     if (!mat.specularColorTexture.empty())
       spec += fmt::format(R"(, "specularColorTexture": {{"index": {}}})", textureIndex(mat.specularColorTexture));
     extensions += fmt::format(R"(, "KHR_materials_specular": {{{}}})", spec);
+  }
+  if (!mat.layers.empty()) {
+    std::string layers = mat.layers;
+    if (const size_t at = layers.find("$TEX"); at != std::string::npos)
+      layers.replace(at, 4, std::to_string(textureIndex(mat.layerTexture)));
+    extensions += ", " + layers;
   }
   std::string textures;
   if (!images.empty()) {
