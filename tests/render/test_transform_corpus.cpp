@@ -1,0 +1,107 @@
+// The glTF-Transform corpus (assets/corpus/transform, made by scripts/corpus/make_transform_corpus.sh
+// with @gltf-transform/cli; docs/gltf-compression.md): the Khronos validator finds no error in any
+// file, Rayster loads every one, and each compressed or restructured variant renders the picture
+// of its uncompressed source through the same camera.
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include "scene/loader.h"
+#include "tests/render/run_rayster.h"
+
+namespace rayster::test {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kDir = fs::path(RAYSTER_SOURCE_DIR) / "assets" / "corpus" / "transform";
+
+// Each variant and the source it was made from.
+const std::map<std::string, std::string> kVariants = {
+    {"quantize.glb", "source.glb"},         {"meshopt.glb", "source.glb"},
+    {"meshopt-gltf/meshopt.gltf", "source.glb"}, {"draco.glb", "source.glb"},
+    {"draco-sequential.glb", "source.glb"}, {"merge.glb", "source.glb"},
+    {"instance.glb", "source.glb"},         {"instance-meshopt.glb", "source.glb"},
+    {"dedup.glb", "source.glb"},            {"weld.glb", "source.glb"},
+    {"room-meshopt.glb", "room.glb"},       {"room-draco.glb", "room.glb"},
+};
+
+// Raster mode: deterministic, and every pixel is a function of geometry, normals, UVs and the
+// texture, which is what compression changes. The tolerance, from what the compressed files
+// quantize (gltf-transform's defaults) at this size (a pixel spans about 4 cm at the scene):
+//  - positions, 14 bits over each mesh's box: at most 0.4 mm, 1 % of a pixel, so only pixels an
+//    edge passes within 1 % of their centre change coverage: a handful of edge pixels;
+//  - normals, 8 to 10 bits octahedral: under 0.5 degree, so N·L and the highlight move by about
+//    1 %: a few 1/255 steps on lit surfaces;
+//  - UVs, 12 bits: 1/60 texel of the 64-texel checker, so texels blend by that much more or less
+//    at the checker's edges: up to 3/255 there.
+// So: every channel within 6/255 on 99.5 % of the pixels, no pixel more than 96/255 off (an edge
+// pixel switching between two surfaces is the largest honest change), and the RMSE under 1/255.
+constexpr int kSize[2] = {160, 120};
+constexpr int kChannelTolerance = 6;
+constexpr double kFractionWithin = 0.995;
+constexpr int kMaxChannelDiff = 96;
+constexpr double kMaxRmse = 1.0 / 255.0;
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+TEST(TransformCorpus, ValidatorFindsNoErrorAndRaysterLoadsEveryFile) {
+  const fs::path module = fs::path(RAYSTER_SOURCE_DIR) / "tools" / "npm" / "node_modules" / "gltf-validator";
+  std::vector<std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(kDir))
+    if (e.path().extension() == ".gltf" || e.path().extension() == ".glb") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  ASSERT_EQ(files.size(), kVariants.size() + 2) << "every file in the corpus is a variant or a source";
+  for (const std::string& f : files) {
+    auto scene = scene::loadScene(f);
+    EXPECT_TRUE(scene.ok()) << f << ": " << scene.error().message;
+  }
+  if (std::system("command -v node >/dev/null 2>&1") != 0 || !fs::exists(module))
+    GTEST_SKIP() << "node or tools/npm/node_modules/gltf-validator is missing (scripts/setup.sh installs both)";
+  std::string cmd = "GLTF_VALIDATOR_MODULE=" + quoted(module.string()) + " node " +
+                    quoted((fs::path(RAYSTER_SOURCE_DIR) / "tools" / "gltf-validate.js").string());
+  for (const std::string& f : files) cmd += " " + quoted(f);
+  FILE* pipe = popen(cmd.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  size_t reports = 0;
+  char line[8192];
+  while (std::fgets(line, sizeof line, pipe)) {
+    const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+    if (j.is_discarded()) continue;
+    ++reports;
+    EXPECT_EQ(j["errors"].get<int>(), 0) << j["file"] << ": " << j["first"];
+  }
+  EXPECT_EQ(pclose(pipe), 0);
+  EXPECT_EQ(reports, files.size());
+}
+
+TEST(TransformCorpus, EveryVariantRendersLikeItsSource) {
+  auto dir = testDir();
+  const std::string common = " --mode raster --frames 1 --seed 1";
+  std::map<std::string, Image8> sources;
+  for (const auto& [variant, source] : kVariants) {
+    if (!sources.count(source))
+      sources[source] = renderOk(dir, fs::path(source).stem().string(), (kDir / source).string() + common, kSize[0],
+                                 kSize[1]);
+    const std::string stem = fs::path(variant).stem().string() + "-variant";
+    const Image8 image = renderOk(dir, stem, (kDir / variant).string() + common, kSize[0], kSize[1]);
+    const Image8& reference = sources[source];
+    ASSERT_FALSE(reference.empty());
+    if (image.empty()) continue;  // renderOk said why
+    const ImageDiff diff = compare(reference, image, kChannelTolerance);
+    EXPECT_GE(diff.fractionWithinTolerance, kFractionWithin) << variant;
+    EXPECT_LE(diff.maxChannelDiff, kMaxChannelDiff) << variant;
+    EXPECT_LE(diff.rmse, kMaxRmse) << variant;
+    std::printf("%-28s vs %-10s: max %3d/255, %.4f within %d/255, rmse %.5f\n", variant.c_str(), source.c_str(),
+                diff.maxChannelDiff, diff.fractionWithinTolerance, kChannelTolerance, diff.rmse);
+    if (diff.fractionWithinTolerance < kFractionWithin || diff.maxChannelDiff > kMaxChannelDiff)
+      (void)writePng(dir / (stem + "-diff.png"), diff.heatmap);
+  }
+}
+
+}  // namespace
+}  // namespace rayster::test

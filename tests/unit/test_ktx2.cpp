@@ -1,0 +1,377 @@
+// Rayster's KTX2 reader (core/ktx2.cpp, core/bcn.cpp) on files this test writes: uncompressed
+// formats, zstd supercompression, BC1/BC3/BC4/BC5 blocks with hand-computed decodes and blocks
+// from a small BC1 encoder below; malformed files (truncated, lying level index, wrong sizes) and
+// Basis Universal payloads refused in one line; and KHR_texture_basisu / image/ktx2 in glTF.
+#include <random>
+
+#include <zstd.h>
+
+#include <gtest/gtest.h>
+
+#include "core/bcn.h"
+#include "core/image_io.h"
+#include "core/ktx2.h"
+#include "core/log.h"
+#include "tests/unit/gltf_test_util.h"
+
+namespace rayster::test {
+namespace {
+
+struct Ktx2Spec {
+  uint32_t vkFormat = 37;
+  uint32_t width = 1, height = 1, depth = 0, layers = 0, faces = 1, levelCount = 1, scheme = 0;
+  uint8_t colourModel = 1;  // KHR_DF_MODEL_RGBSDA
+  std::optional<uint64_t> uncompressedLength;  // default: the payload's size (scheme 0) or given
+};
+
+void put32(std::vector<uint8_t>& out, uint32_t v) { out.insert(out.end(), {uint8_t(v), uint8_t(v >> 8), uint8_t(v >> 16), uint8_t(v >> 24)}); }
+void put64(std::vector<uint8_t>& out, uint64_t v) {
+  put32(out, uint32_t(v));
+  put32(out, uint32_t(v >> 32));
+}
+
+// A KTX2 file: header, index, level index (level 0 real, smaller levels empty), a minimal DFD
+// (the basic block's header, no samples) and the level 0 payload.
+std::vector<uint8_t> writeKtx2(const Ktx2Spec& s, const std::vector<uint8_t>& payload) {
+  std::vector<uint8_t> out = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+  for (uint32_t v : {s.vkFormat, 1u, s.width, s.height, s.depth, s.layers, s.faces, s.levelCount, s.scheme})
+    put32(out, v);
+  const uint32_t levels = std::max(s.levelCount, 1u);
+  const uint32_t dfdOffset = 80 + 24 * levels, dfdLength = 28;
+  put32(out, dfdOffset);
+  put32(out, dfdLength);
+  put32(out, 0);  // no key/value data
+  put32(out, 0);
+  put64(out, 0);  // no supercompression global data
+  put64(out, 0);
+  const uint64_t dataOffset = dfdOffset + dfdLength;
+  for (uint32_t l = 0; l < levels; ++l) {
+    put64(out, l == 0 ? dataOffset : dataOffset + payload.size());
+    put64(out, l == 0 ? payload.size() : 0);
+    put64(out, l == 0 ? s.uncompressedLength.value_or(payload.size()) : 0);
+  }
+  put32(out, dfdLength);
+  put32(out, 0);                 // vendor 0 (Khronos), descriptor type 0 (basic)
+  put32(out, 2u | (24u << 16));  // version 2, block size 24
+  out.insert(out.end(), {s.colourModel, 1, 2, 0});
+  put32(out, 0);
+  put64(out, 0);
+  out.insert(out.end(), payload.begin(), payload.end());
+  return out;
+}
+
+Result<Image8> decode(const std::vector<uint8_t>& file) { return decodeKtx2(file, 16384); }
+
+std::vector<uint8_t> pixel(const Image8& image, int x, int y) {
+  const uint8_t* p = image.pixel(x, y);
+  return {p[0], p[1], p[2], p[3]};
+}
+
+void expectRefused(const Result<Image8>& image, const std::string& part) {
+  ASSERT_FALSE(image.ok()) << "expected a refusal containing: " << part;
+  EXPECT_NE(image.error().message.find(part), std::string::npos) << image.error().message;
+  EXPECT_EQ(image.error().message.rfind("KTX2 ", 0), 0u) << image.error().message;
+  EXPECT_EQ(image.error().message.find('\n'), std::string::npos);
+}
+
+TEST(Ktx2, UncompressedFormatsDecodeAsVulkanSamplesThem) {
+  auto rgba = decode(writeKtx2({37, 2, 1}, {10, 20, 30, 40, 50, 60, 70, 80}));
+  ASSERT_TRUE(rgba.ok()) << rgba.error().message;
+  EXPECT_EQ(pixel(*rgba, 1, 0), (std::vector<uint8_t>{50, 60, 70, 80}));
+  auto rgb = decode(writeKtx2({29, 1, 2}, {1, 2, 3, 4, 5, 6}));  // sRGB: same bytes, decided by use
+  ASSERT_TRUE(rgb.ok()) << rgb.error().message;
+  EXPECT_EQ(pixel(*rgb, 0, 1), (std::vector<uint8_t>{4, 5, 6, 255}));
+  auto r = decode(writeKtx2({9, 3, 1}, {7, 8, 9}));  // no row padding in KTX2
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(pixel(*r, 2, 0), (std::vector<uint8_t>{9, 0, 0, 255}));
+  auto rg = decode(writeKtx2({16, 1, 1}, {7, 8}));
+  ASSERT_TRUE(rg.ok());
+  EXPECT_EQ(pixel(*rg, 0, 0), (std::vector<uint8_t>{7, 8, 0, 255}));
+  auto bgra = decode(writeKtx2({44, 1, 1}, {1, 2, 3, 4}));
+  ASSERT_TRUE(bgra.ok());
+  EXPECT_EQ(pixel(*bgra, 0, 0), (std::vector<uint8_t>{3, 2, 1, 4}));
+  // RGBA16F: 0.5, 1.0, 2.0 (clamped), -1 (clamped) in half floats.
+  auto half = decode(writeKtx2({97, 1, 1}, {0x00, 0x38, 0x00, 0x3C, 0x00, 0x40, 0x00, 0xBC}));
+  ASSERT_TRUE(half.ok()) << half.error().message;
+  EXPECT_EQ(pixel(*half, 0, 0), (std::vector<uint8_t>{128, 255, 255, 0}));
+}
+
+TEST(Ktx2, ZstdSupercompressionInflates) {
+  std::vector<uint8_t> raw(16 * 16 * 4);
+  for (size_t i = 0; i < raw.size(); ++i) raw[i] = uint8_t(i * 7);
+  std::vector<uint8_t> packed(ZSTD_compressBound(raw.size()));
+  packed.resize(ZSTD_compress(packed.data(), packed.size(), raw.data(), raw.size(), 3));
+  Ktx2Spec spec{37, 16, 16};
+  spec.scheme = 2;
+  spec.uncompressedLength = raw.size();
+  auto image = decode(writeKtx2(spec, packed));
+  ASSERT_TRUE(image.ok()) << image.error().message;
+  EXPECT_EQ(image->rgba, raw);
+
+  spec.uncompressedLength = raw.size() + 4;  // a lie about the inflated size
+  expectRefused(decode(writeKtx2(spec, packed)), "uncompressedByteLength 1028 is not the 1024 bytes");
+  spec.uncompressedLength = raw.size();
+  std::vector<uint8_t> garbage(packed.size(), 0x55);
+  expectRefused(decode(writeKtx2(spec, garbage)), "level 0 zstd data is invalid");
+  std::vector<uint8_t> cut(packed.begin(), packed.begin() + long(packed.size() / 2));
+  expectRefused(decode(writeKtx2(spec, cut)), "zstd");
+}
+
+// One 4 × 4 block decoded: texel i takes palette entry i % 4 (BC1) or i % 8 (BC4).
+TEST(Ktx2, Bc1BlocksDecodeToTheirHandComputedPalettes) {
+  uint8_t out[16][4];
+  // colour0 = pure red (0xF800) > colour1 = pure blue (0x001F): four colours, thirds between.
+  const uint8_t four[8] = {0x00, 0xF8, 0x1F, 0x00, 0xE4, 0xE4, 0xE4, 0xE4};  // indices 0,1,2,3 per row
+  decodeBc1(four, false, out);
+  const uint8_t expectFour[4][4] = {{255, 0, 0, 255}, {0, 0, 255, 255}, {170, 0, 85, 255}, {85, 0, 170, 255}};
+  for (int i = 0; i < 16; ++i)
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(out[i][k], expectFour[i % 4][k]) << i << " " << k;
+  // colour0 <= colour1: three colours and black, transparent in BC1 RGBA.
+  const uint8_t three[8] = {0x1F, 0x00, 0x00, 0xF8, 0xE4, 0xE4, 0xE4, 0xE4};
+  decodeBc1(three, true, out);
+  const uint8_t expectThree[4][4] = {{0, 0, 255, 255}, {255, 0, 0, 255}, {128, 0, 128, 255}, {0, 0, 0, 0}};
+  for (int i = 0; i < 16; ++i)
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(out[i][k], expectThree[i % 4][k]) << i << " " << k;
+  decodeBc1(three, false, out);  // BC1 RGB: the fourth colour is opaque black
+  EXPECT_EQ(out[3][3], 255);
+}
+
+TEST(Ktx2, Bc4Bc5AndBc3ChannelsDecodeToTheirHandComputedRamps) {
+  // 3-bit indices 0..7 for texels 0..7 and again for 8..15: 0o76543210 twice, 24 bits each.
+  const uint8_t ramp[6] = {0x88, 0xC6, 0xFA, 0x88, 0xC6, 0xFA};
+  uint8_t out[16][4];
+  uint8_t bc4[8] = {200, 100};
+  std::memcpy(bc4 + 2, ramp, 6);
+  decodeBc4(bc4, out);
+  // r0 > r1: r0, r1, then (6 r0 + r1) / 7 … (r0 + 6 r1) / 7, rounded.
+  const int eight[8] = {200, 100, 186, 171, 157, 143, 129, 114};
+  for (int i = 0; i < 16; ++i) {
+    EXPECT_EQ(out[i][0], eight[i % 8]) << i;
+    EXPECT_EQ(out[i][1], 0);
+    EXPECT_EQ(out[i][3], 255);
+  }
+  uint8_t bc5[16] = {50, 150};
+  std::memcpy(bc5 + 2, ramp, 6);
+  bc5[8] = 200, bc5[9] = 100;
+  std::memcpy(bc5 + 10, ramp, 6);
+  decodeBc5(bc5, out);
+  // r0 <= r1: r0, r1, four fifths between, then 0 and 255.
+  const int six[8] = {50, 150, 70, 90, 110, 130, 0, 255};
+  for (int i = 0; i < 16; ++i) {
+    EXPECT_EQ(out[i][0], six[i % 8]) << i;
+    EXPECT_EQ(out[i][1], eight[i % 8]) << i;
+    EXPECT_EQ(out[i][2], 0);
+  }
+  // BC3: BC4-style alpha, and the colour block always in four-colour mode (even colour0 < colour1).
+  uint8_t bc3[16] = {50, 150};
+  std::memcpy(bc3 + 2, ramp, 6);
+  const uint8_t colour[8] = {0x1F, 0x00, 0x00, 0xF8, 0xE4, 0xE4, 0xE4, 0xE4};
+  std::memcpy(bc3 + 8, colour, 8);
+  decodeBc3(bc3, out);
+  EXPECT_EQ(out[2][0], 85);  // (2 blue + red) / 3, not the three-colour mode's midpoint
+  EXPECT_EQ(out[3][3], 90);
+  EXPECT_EQ(out[7][3], 255);
+}
+
+// A small BC1 encoder: endpoints at the block's colour box corners, each texel the nearest of the
+// four palette colours. Enough to check that real encoded images decode to what was encoded.
+std::vector<uint8_t> encodeBc1(const Image8& image) {
+  std::vector<uint8_t> out;
+  auto to565 = [](const int c[3]) { return uint16_t(((c[0] >> 3) << 11) | ((c[1] >> 2) << 5) | (c[2] >> 3)); };
+  for (int by = 0; by < (image.height + 3) / 4; ++by)
+    for (int bx = 0; bx < (image.width + 3) / 4; ++bx) {
+      int lo[3] = {255, 255, 255}, hi[3] = {0, 0, 0};
+      for (int t = 0; t < 16; ++t) {
+        const uint8_t* p = image.pixel(std::min(bx * 4 + t % 4, image.width - 1), std::min(by * 4 + t / 4, image.height - 1));
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], int(p[k])), hi[k] = std::max(hi[k], int(p[k]));
+      }
+      uint16_t c0 = to565(hi), c1 = to565(lo);
+      if (c0 == c1) c0 |= 0;  // a flat block: all indices 0
+      if (c0 < c1) std::swap(c0, c1);
+      uint8_t block[8] = {uint8_t(c0), uint8_t(c0 >> 8), uint8_t(c1), uint8_t(c1 >> 8), 0, 0, 0, 0};
+      uint8_t palette[16][4];
+      decodeBc1(block, false, palette);  // indices 0: palette[*] is colour 0; get all four below
+      int colours[4][3];
+      for (int e = 0; e < 4; ++e) {
+        uint8_t probe[8];
+        std::memcpy(probe, block, 4);
+        std::memset(probe + 4, e * 0x55, 4);
+        decodeBc1(probe, false, palette);
+        for (int k = 0; k < 3; ++k) colours[e][k] = palette[0][k];
+      }
+      uint32_t indices = 0;
+      for (int t = 0; t < 16; ++t) {
+        const uint8_t* p = image.pixel(std::min(bx * 4 + t % 4, image.width - 1), std::min(by * 4 + t / 4, image.height - 1));
+        int best = 0, bestError = INT32_MAX;
+        for (int e = 0; e < 4; ++e) {
+          int error = 0;
+          for (int k = 0; k < 3; ++k) error += (p[k] - colours[e][k]) * (p[k] - colours[e][k]);
+          if (error < bestError) best = e, bestError = error;
+        }
+        indices |= uint32_t(best) << (2 * t);
+      }
+      std::memcpy(block + 4, &indices, 4);
+      out.insert(out.end(), block, block + 8);
+    }
+  return out;
+}
+
+TEST(Ktx2, Bc1EncodedGradientDecodesWithinTheFormatsPrecision) {
+  Image8 image = Image8::make(10, 7);  // not a multiple of 4: edge blocks hang over
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      uint8_t* p = image.pixel(x, y);
+      p[0] = uint8_t(x * 25), p[1] = uint8_t(y * 36), p[2] = uint8_t(128), p[3] = 255;
+    }
+  auto decoded = decode(writeKtx2({131, 10, 7}, encodeBc1(image)));
+  ASSERT_TRUE(decoded.ok()) << decoded.error().message;
+  ASSERT_EQ(decoded->width, 10);
+  ASSERT_EQ(decoded->height, 7);
+  int worst = 0;
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 10; ++x)
+      for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(int(decoded->pixel(x, y)[k]) - image.pixel(x, y)[k]));
+  // A block spans at most 75 levels per channel here; four palette steps of a third each and the
+  // 5/6-bit endpoints leave at most about an eighth of that plus 8 levels of 5-bit rounding.
+  EXPECT_LE(worst, 24);
+}
+
+TEST(Ktx2, MalformedFilesAreRefusedInOneLine) {
+  const std::vector<uint8_t> good = writeKtx2({37, 2, 2}, std::vector<uint8_t>(16, 9));
+  ASSERT_TRUE(decode(good).ok());
+  expectRefused(decode({good.begin(), good.begin() + 50}), "truncated (50 bytes)");
+  expectRefused(decode({good.begin(), good.end() - 3}), "level 0 (bytes");
+  std::vector<uint8_t> pastEnd = good;
+  pastEnd[80] = 0xF0;  // level 0's byteOffset far past the end
+  expectRefused(decode(pastEnd), "lies outside the file");
+  expectRefused(decode(writeKtx2({37, 2, 2}, std::vector<uint8_t>(12, 9))), "level 0 has 12 bytes");
+  Ktx2Spec levels{37, 2, 2};
+  levels.levelCount = 5;
+  expectRefused(decode(writeKtx2(levels, std::vector<uint8_t>(16))), "levelCount 5 is more than a 2x2 texture has (2)");
+  std::vector<uint8_t> shortIndex = writeKtx2(levels, {});
+  shortIndex.resize(100);
+  levels.levelCount = 2;
+  std::vector<uint8_t> cutIndex = writeKtx2(levels, std::vector<uint8_t>(16));
+  cutIndex.resize(110);
+  expectRefused(decode(cutIndex), "level index (2 levels) runs past the end");
+  expectRefused(decode(writeKtx2({37, 0, 2}, {})), "is 0x2");
+  expectRefused(decode(writeKtx2({37, 100000, 2}, {})), "larger than Rayster accepts");
+  Ktx2Spec cube{37, 2, 2};
+  cube.faces = 6;
+  expectRefused(decode(writeKtx2(cube, std::vector<uint8_t>(16))), "has 6 faces");
+  Ktx2Spec array{37, 2, 2};
+  array.layers = 3;
+  expectRefused(decode(writeKtx2(array, std::vector<uint8_t>(16))), "array of 3 layers");
+  expectRefused(decode(writeKtx2({147, 4, 4}, std::vector<uint8_t>(16))), "vkFormat 147 is not supported");
+  expectRefused(decode(writeKtx2({145, 4, 4}, std::vector<uint8_t>(16))), "BC7 is not decoded yet");
+  Ktx2Spec zlib{37, 2, 2};
+  zlib.scheme = 3;
+  expectRefused(decode(writeKtx2(zlib, std::vector<uint8_t>(16))), "supercompression scheme 3");
+  expectRefused(decode(std::vector<uint8_t>(200, 0)), "identifier is missing");
+}
+
+TEST(Ktx2, BasisUniversalPayloadsAreRefusedNamingTheExtension) {
+  Ktx2Spec etc1s{0, 4, 4};
+  etc1s.scheme = 1;
+  etc1s.colourModel = 163;
+  expectRefused(decode(writeKtx2(etc1s, std::vector<uint8_t>(16))),
+                "payload is Basis Universal ETC1S (BasisLZ) (KHR_texture_basisu)");
+  Ktx2Spec uastc{0, 4, 4};
+  uastc.colourModel = 166;
+  expectRefused(decode(writeKtx2(uastc, std::vector<uint8_t>(16))), "payload is Basis Universal UASTC");
+}
+
+TEST(Ktx2, RandomCorruptionIsRefusedOrDecodedNeverACrash) {
+  std::vector<uint8_t> raw(8 * 8 * 4, 77);
+  std::vector<uint8_t> packed(ZSTD_compressBound(raw.size()));
+  packed.resize(ZSTD_compress(packed.data(), packed.size(), raw.data(), raw.size(), 3));
+  Ktx2Spec spec{37, 8, 8};
+  spec.scheme = 2;
+  spec.uncompressedLength = raw.size();
+  const std::vector<std::vector<uint8_t>> bases = {writeKtx2(spec, packed),
+                                                   writeKtx2({133, 8, 8}, std::vector<uint8_t>(32, 0xA5))};
+  std::mt19937 rng(15);
+  for (const auto& base : bases)
+    for (int round = 0; round < 500; ++round) {
+      std::vector<uint8_t> file = base;
+      for (int k = 0; k < 3; ++k) file[rng() % file.size()] = uint8_t(rng());
+      if (round % 5 == 0) file.resize(rng() % file.size());
+      Result<Image8> image = decode(file);
+      if (image.ok()) {
+        EXPECT_EQ(image->rgba.size(), size_t(image->width) * size_t(image->height) * 4);
+      }
+    }
+}
+
+// ---- in glTF: KHR_texture_basisu with and without a fallback, and image/ktx2 as a plain image ----
+
+std::vector<uint8_t> pngBytes(const TempDir& dir, uint8_t r, uint8_t g, uint8_t b) {
+  Image8 image = Image8::make(2, 2);
+  for (int i = 0; i < 4; ++i) image.rgba[size_t(i) * 4] = r, image.rgba[size_t(i) * 4 + 1] = g,
+                                                  image.rgba[size_t(i) * 4 + 2] = b, image.rgba[size_t(i) * 4 + 3] = 255;
+  const auto path = dir.path() / "fallback.png";
+  EXPECT_TRUE(writePng(path, image).ok());
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
+}
+
+// The quad with a base colour texture: image 0 is a PNG (the fallback), image 1 a KTX2.
+Doc texturedQuad(const TempDir& dir, const std::vector<uint8_t>& ktx2, bool withFallback, bool basisu = true) {
+  Doc d = quadDoc();
+  d.j["images"] = Json::array({{{"bufferView", d.view(pngBytes(dir, 0, 255, 0))}, {"mimeType", "image/png"}},
+                               {{"bufferView", d.view(ktx2)}, {"mimeType", "image/ktx2"}}});
+  Json texture = Json::object();
+  if (basisu) {
+    texture["extensions"]["KHR_texture_basisu"] = {{"source", 1}};
+    if (withFallback) texture["source"] = 0;
+    d.j["extensionsUsed"] = {"KHR_texture_basisu"};
+    if (!withFallback) d.j["extensionsRequired"] = {"KHR_texture_basisu"};
+  } else {
+    texture["source"] = 1;
+  }
+  d.j["textures"] = Json::array({texture});
+  d.j["materials"] = Json::array({{{"name", "paint"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+  primitive(d)["material"] = 0;
+  return d;
+}
+
+TEST(Ktx2, GltfTexturesReadKtx2ThroughBasisuOrAsAPlainImage) {
+  TempDir dir;
+  const std::vector<uint8_t> red = writeKtx2({43, 1, 1}, {255, 0, 0, 255});
+  for (bool fallback : {true, false}) {
+    auto scene = loadBytes(dir, texturedQuad(dir, red, fallback).glb(), "basisu.glb");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const scene::ImageData& image = scene->images.at(scene->textures.at(0).image);
+    EXPECT_EQ(image.width, 1) << "the KTX2 image, not the 2x2 PNG fallback";
+    EXPECT_EQ(image.rgba, (std::vector<uint8_t>{255, 0, 0, 255}));
+  }
+  auto plain = loadBytes(dir, texturedQuad(dir, red, false, false).gltf(), "plain.gltf");
+  ASSERT_TRUE(plain.ok()) << plain.error().message;
+  EXPECT_EQ(plain->images.at(plain->textures.at(0).image).rgba, (std::vector<uint8_t>{255, 0, 0, 255}));
+}
+
+TEST(Ktx2, GltfBasisPayloadFallsBackToTheSourceOrIsRefused) {
+  TempDir dir;
+  Ktx2Spec uastc{0, 4, 4};
+  uastc.colourModel = 166;
+  const std::vector<uint8_t> basis = writeKtx2(uastc, std::vector<uint8_t>(16));
+  auto fallback = loadBytes(dir, texturedQuad(dir, basis, true).glb(), "fallback.glb");
+  ASSERT_TRUE(fallback.ok()) << fallback.error().message;
+  const scene::ImageData& image = fallback->images.at(fallback->textures.at(0).image);
+  EXPECT_EQ(image.width, 2) << "the PNG fallback";
+  EXPECT_EQ(image.rgba[1], 255);
+  auto refused = loadBytes(dir, texturedQuad(dir, basis, false).glb(), "basis.glb");
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("basis.glb: textures[0] KHR_texture_basisu image 1: KTX2 payload is Basis "
+                                         "Universal UASTC (KHR_texture_basisu)"),
+            std::string::npos)
+      << refused.error().message;
+  // A broken KTX2 used as a plain image is refused with the KTX2 cause too.
+  auto broken = loadBytes(dir, texturedQuad(dir, writeKtx2({37, 2, 2}, {1, 2, 3}), false, false).glb(), "broken.glb");
+  ASSERT_FALSE(broken.ok());
+  EXPECT_NE(broken.error().message.find("textures[0] image 1: KTX2 level 0 has 3 bytes"), std::string::npos)
+      << broken.error().message;
+}
+
+}  // namespace
+}  // namespace rayster::test
