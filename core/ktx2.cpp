@@ -42,8 +42,8 @@ enum class Kind { Plain, Half, Bc1, Bc1Alpha, Bc3, Bc4, Bc5 };
 
 struct Format {
   Kind kind = Kind::Plain;
-  int channels = 0;  // Plain: bytes per texel (1-4); Half: 4 channels of 2 bytes
-  bool bgr = false;  // Plain: stored B, G, R(, A)
+  int channels = 0;       // Plain: bytes per texel (1-4); Half: 4 channels of 2 bytes
+  bool bgr = false;       // Plain: stored B, G, R(, A)
   size_t blockBytes = 0;  // BCn: bytes per 4 × 4 block
 };
 
@@ -183,8 +183,8 @@ Result<Image8> decodeKtx2(std::span<const uint8_t> bytes, int maxSide) {
   if (faces != 1) return ktxError(fmt::format("has {} faces; a glTF image is one (not a cube map)", faces));
   const uint32_t maxLevels = 1 + uint32_t(std::floor(std::log2(double(std::max(width, height)))));
   if (levelCount > maxLevels)
-    return ktxError(fmt::format("levelCount {} is more than a {}x{} texture has ({})", levelCount, width, height,
-                                maxLevels));
+    return ktxError(
+        fmt::format("levelCount {} is more than a {}x{} texture has ({})", levelCount, width, height, maxLevels));
   const size_t levels = std::max<uint32_t>(levelCount, 1);
   if (bytes.size() < kHeaderBytes + levels * kLevelEntryBytes)
     return ktxError(fmt::format("level index ({} levels) runs past the end of the file", levels));
@@ -223,8 +223,7 @@ Result<Image8> decodeKtx2(std::span<const uint8_t> bytes, int maxSide) {
     inflated.resize(size_t(expected));
     const size_t got = ZSTD_decompress(inflated.data(), inflated.size(), level, size_t(length));
     if (ZSTD_isError(got)) return ktxError(fmt::format("level 0 zstd data is invalid: {}", ZSTD_getErrorName(got)));
-    if (got != expected)
-      return ktxError(fmt::format("level 0 zstd data inflates to {} bytes, not {}", got, expected));
+    if (got != expected) return ktxError(fmt::format("level 0 zstd data inflates to {} bytes, not {}", got, expected));
     level = inflated.data();
   }
   if (format->blockBytes)

@@ -26,10 +26,10 @@ constexpr int kMaxJsonDepth = 64;
 // Extensions whose meaning Rayster implements (or, for KHR_mesh_quantization, that only widen
 // the accessor types the reader already handles). The compression ones: docs/gltf-compression.md.
 constexpr std::array<std::string_view, 13> kSupportedExtensions = {
-    "KHR_lights_punctual",        "KHR_texture_transform",      "KHR_materials_emissive_strength",
-    "KHR_materials_transmission", "KHR_materials_ior",          "KHR_materials_volume",
-    "KHR_materials_specular",     "KHR_mesh_quantization",      "KHR_materials_unlit",
-    "KHR_draco_mesh_compression", "EXT_meshopt_compression",    "KHR_texture_basisu",
+    "KHR_lights_punctual",        "KHR_texture_transform",   "KHR_materials_emissive_strength",
+    "KHR_materials_transmission", "KHR_materials_ior",       "KHR_materials_volume",
+    "KHR_materials_specular",     "KHR_mesh_quantization",   "KHR_materials_unlit",
+    "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_texture_basisu",
     "EXT_mesh_gpu_instancing"};
 
 bool supported(std::string_view name) {
@@ -319,10 +319,12 @@ Result<VettedJson> vetJson(const std::string& file, std::string_view text, bool 
         RAYSTER_TRY(checkUri(file, fmt::format("image {}", i), uri->get<std::string>()));
       if (const Json* view = member((*images)[i], "bufferView")) RAYSTER_TRY(checkImageView(file, root, i, *view));
     }
-  VettedJson vetted{imageMaterials(root), {}, {}};
-  Result<std::string> rewritten = stubFallbackBuffers(file, root, binary, vetted.fallbackBuffers);
-  if (!rewritten) return rewritten.error();
-  vetted.rewrittenJson = std::move(*rewritten);
+  VettedJson vetted{imageMaterials(root), {}, {}, {}};
+  // What tinygltf 2.7 cannot parse although it is valid (compressed glTF needs both).
+  Result<bool> stubbed = stubFallbackBuffers(file, root, binary, vetted.fallbackBuffers);
+  if (!stubbed) return stubbed.error();
+  const bool detached = detachViewlessIndices(root, vetted.detachedIndices);
+  if (*stubbed || detached) vetted.rewrittenJson = root.dump();
   return vetted;
 }
 

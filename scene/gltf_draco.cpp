@@ -3,6 +3,7 @@
 // types the primitive's accessors declare, into a new buffer, and the primitive is pointed at
 // copies of its accessors that read it; from there on it is an ordinary primitive (bounds checks,
 // normalized attributes, flat normals). Quantized Draco attributes come out dequantized.
+#include <algorithm>
 #include <cstring>
 #include <memory>
 
@@ -70,6 +71,26 @@ size_t componentBytes(int componentType) {
   }
 }
 
+// Exporters write an attribute's bounds from the data before Draco quantized it, and dequantized
+// values can land up to one quantization step outside them (gltf-transform's 14-bit positions on a
+// 0.8 m box: 0.40005 for a bound of 0.4). Such bounds are widened to the decoded data, as long as
+// the overshoot is within 1/128 of the extent (a 7-bit quantization step, coarser than any
+// exporter uses); a larger one is a real contradiction that checkBounds reports.
+void widenBounds(tinygltf::Accessor& accessor, const float* values, size_t points, int components) {
+  if (accessor.minValues.size() != size_t(components) || accessor.maxValues.size() != size_t(components)) return;
+  for (int c = 0; c < components; ++c) {
+    double lo = accessor.minValues[size_t(c)], hi = accessor.maxValues[size_t(c)];
+    const double slack = std::max(hi - lo, 0.0) / 128.0;
+    for (size_t i = 0; i < points; ++i) {
+      const double v = values[i * size_t(components) + size_t(c)];
+      if (v < lo && v >= accessor.minValues[size_t(c)] - slack) lo = v;
+      if (v > hi && v <= accessor.maxValues[size_t(c)] + slack) hi = v;
+    }
+    accessor.minValues[size_t(c)] = lo;
+    accessor.maxValues[size_t(c)] = hi;
+  }
+}
+
 // A new view over `buffer` bytes [offset, offset + length) and a copy of `accessor` that reads it.
 int addAccessor(tinygltf::Model& model, int buffer, size_t offset, size_t length, tinygltf::Accessor accessor) {
   tinygltf::BufferView view;
@@ -121,7 +142,8 @@ Status decodePrimitive(tinygltf::Model& model, const std::string& file, size_t m
   const tinygltf::Value& attributes = ext.Get("attributes");
   for (const std::string& name : attributes.Keys()) {
     const tinygltf::Value& id = attributes.Get(name);
-    if (!id.IsInt() || id.GetNumberAsInt() < 0) return bad(file, "{}.attributes.{} is not a Draco attribute id", path, name);
+    if (!id.IsInt() || id.GetNumberAsInt() < 0)
+      return bad(file, "{}.attributes.{} is not a Draco attribute id", path, name);
     auto it = prim.attributes.find(name);
     if (it == prim.attributes.end())
       return bad(file, "{}.attributes.{}: the primitive has no {} attribute", path, name, name);
@@ -129,7 +151,8 @@ Status decodePrimitive(tinygltf::Model& model, const std::string& file, size_t m
       return bad(file, "{}: accessor {} of {} does not exist", path, it->second, name);
     const tinygltf::Accessor& accessor = model.accessors[size_t(it->second)];
     const draco::PointAttribute* attr = mesh->GetAttributeByUniqueId(uint32_t(id.GetNumberAsInt()));
-    if (!attr) return bad(file, "{}.attributes.{}: the Draco mesh has no attribute {}", path, name, id.GetNumberAsInt());
+    if (!attr)
+      return bad(file, "{}.attributes.{}: the Draco mesh has no attribute {}", path, name, id.GetNumberAsInt());
     const int components = tinygltf::GetNumComponentsInType(uint32_t(accessor.type));
     const size_t size = componentBytes(accessor.componentType);
     if (components <= 0 || components > 4 || size == 0)
@@ -146,7 +169,10 @@ Status decodePrimitive(tinygltf::Model& model, const std::string& file, size_t m
     if (!convertAttribute(*attr, points, components, accessor.componentType, out.data() + offset))
       return bad(file, "{}.attributes.{}: Draco values do not convert to accessor {}'s component type", path, name,
                  it->second);
-    it->second = addAccessor(model, outBuffer, offset, bytes, accessor);
+    tinygltf::Accessor decodedAccessor = accessor;
+    if (accessor.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
+      widenBounds(decodedAccessor, reinterpret_cast<const float*>(out.data() + offset), points, components);
+    it->second = addAccessor(model, outBuffer, offset, bytes, std::move(decodedAccessor));
   }
 
   // Indices, in the indices accessor's component type (a new UNSIGNED_INT accessor where it has none).

@@ -34,8 +34,7 @@ Result<std::vector<SceneNode>> gpuInstances(const tinygltf::Model& model, const 
   size_t count = 0;
   bool first = true;
   auto checkCount = [&](size_t n, const char* name) -> Status {
-    if (!first && n != count)
-      return bad(file, "{}.attributes.{} has {} elements, the others {}", path, name, n, count);
+    if (!first && n != count) return bad(file, "{}.attributes.{} has {} elements, the others {}", path, name, n, count);
     count = n, first = false;
     return okStatus();
   };
@@ -69,8 +68,7 @@ Result<std::vector<SceneNode>> gpuInstances(const tinygltf::Model& model, const 
       const glm::vec4 q = rotations[i];  // x, y, z, w as glTF stores it
       glm::quat rotation(q.w, q.x, q.y, q.z);
       const float length = glm::length(rotation);
-      if (!(length > 0.0f) || !std::isfinite(length))
-        return bad(file, "{}: ROTATION {} is not a rotation", path, i);
+      if (!(length > 0.0f) || !std::isfinite(length)) return bad(file, "{}: ROTATION {} is not a rotation", path, i);
       n.rotation = rotation / length;
     }
     const glm::mat4 m = n.parentFromNode();

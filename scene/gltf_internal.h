@@ -37,6 +37,12 @@ struct FallbackBuffer {
   uint64_t byteLength = 0;
 };
 
+// A primitive's indices accessor that tinygltf must not see (detachViewlessIndices).
+struct DetachedIndices {
+  size_t mesh = 0, primitive = 0;
+  int accessor = -1;
+};
+
 // What the loader learns from the raw JSON before tinygltf reads any image.
 struct VettedJson {
   // Per glTF image: the first material that shows it through a texture, -1 for none. Only images
@@ -45,6 +51,7 @@ struct VettedJson {
   // EXT_meshopt_compression fallback buffers given stand-in bytes, and the JSON that says so
   // (empty: parse the file's own JSON).
   std::vector<FallbackBuffer> fallbackBuffers;
+  std::vector<DetachedIndices> detachedIndices;
   std::string rewrittenJson;
 };
 
@@ -86,10 +93,14 @@ Result<std::vector<uint32_t>> readIndices(const tinygltf::Model& model, int acce
 // ---- gltf_meshopt.cpp, gltf_draco.cpp: compressed geometry, decoded before validation ----
 
 // Gives each fallback buffer without data a one-byte data URI (tinygltf refuses a buffer it cannot
-// fill) and lists them; refuses uncompressed views into them. Returns the JSON to parse instead
-// of the file's, or an empty string when nothing changed.
-Result<std::string> stubFallbackBuffers(const std::string& file, nlohmann::json& root, bool binary,
-                                        std::vector<FallbackBuffer>& fallbacks);
+// fill) and lists them; refuses uncompressed views into them. True when `root` changed.
+Result<bool> stubFallbackBuffers(const std::string& file, nlohmann::json& root, bool binary,
+                                 std::vector<FallbackBuffer>& fallbacks);
+// tinygltf 2.7 refuses a primitive whose indices accessor has no buffer view, which is valid glTF
+// and what every Draco primitive has: such indices are taken out of the JSON tinygltf parses and
+// put back into the model afterwards (reattachIndices). True when `root` changed.
+bool detachViewlessIndices(nlohmann::json& root, std::vector<DetachedIndices>& detached);
+Status reattachIndices(tinygltf::Model& model, const std::string& file, const std::vector<DetachedIndices>& detached);
 // The GLB `glb` (checked by glbJsonChunk) with its JSON chunk replaced by `json`.
 std::vector<uint8_t> glbWithJson(const std::vector<uint8_t>& glb, std::string_view json);
 // Decodes every EXT_meshopt_compression buffer view into its own buffer range.

@@ -55,7 +55,7 @@ unsigned glbLength(const std::vector<uint8_t>& bytes) {
 
 // Reads and parses the file; `images` learns which images a material shows and which were found.
 Result<tinygltf::Model> parse(const fs::path& path, const std::string& file, ImageDecodeState& images,
-                              std::vector<FallbackBuffer>& fallbacks) {
+                              std::vector<FallbackBuffer>& fallbacks, std::vector<DetachedIndices>& detached) {
   Result<std::vector<uint8_t>> bytes = readFile(path, file);
   if (!bytes) return bytes.error();
   const bool binary = bytes->size() >= 4 && std::memcmp(bytes->data(), "glTF", 4) == 0;
@@ -77,6 +77,7 @@ Result<tinygltf::Model> parse(const fs::path& path, const std::string& file, Ima
     }
   }
   fallbacks = vetted->fallbackBuffers;
+  detached = vetted->detachedIndices;
   images.imageMaterial = vetted->imageMaterial;
   images.reached.assign(images.imageMaterial.size(), false);
 
@@ -298,8 +299,8 @@ Status addMeshInstance(MeshBuilder& meshes, std::vector<int>& meshMap, int index
 Status addMeshInstances(MeshBuilder& meshes, std::vector<int>& meshMap, int index, int32_t self,
                         const glm::mat4& world) {
   Scene& scene = meshes.scene;
-  Result<std::vector<SceneNode>> copies = gpuInstances(meshes.model, meshes.model.nodes[size_t(index)], size_t(index),
-                                                       meshes.file);
+  Result<std::vector<SceneNode>> copies =
+      gpuInstances(meshes.model, meshes.model.nodes[size_t(index)], size_t(index), meshes.file);
   if (!copies) return copies.error();
   if (copies->empty()) return addMeshInstance(meshes, meshMap, index, self, world);
   for (SceneNode& copy : *copies) {
@@ -369,8 +370,10 @@ Result<Scene> loadGltf(const fs::path& path) {
   const std::string file = path.filename().string();
   gltf::ImageDecodeState images;
   std::vector<gltf::FallbackBuffer> fallbacks;
-  Result<tinygltf::Model> model = gltf::parse(path, file, images, fallbacks);
+  std::vector<gltf::DetachedIndices> detached;
+  Result<tinygltf::Model> model = gltf::parse(path, file, images, fallbacks, detached);
   if (!model) return model.error();
+  RAYSTER_TRY(gltf::reattachIndices(*model, file, detached));
   // Compressed geometry becomes plain buffer data first, so everything after reads it as such.
   RAYSTER_TRY(gltf::decodeMeshopt(*model, file, fallbacks));
   RAYSTER_TRY(gltf::decodeDraco(*model, file));

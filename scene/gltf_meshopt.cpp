@@ -133,11 +133,11 @@ Status decodeStream(const Stream& s, const uint8_t* src, uint8_t* dst, const std
 
 }  // namespace
 
-Result<std::string> stubFallbackBuffers(const std::string& file, nlohmann::json& root, bool binary,
-                                        std::vector<FallbackBuffer>& fallbacks) {
+Result<bool> stubFallbackBuffers(const std::string& file, nlohmann::json& root, bool binary,
+                                 std::vector<FallbackBuffer>& fallbacks) {
   fallbacks.clear();
   Json* buffers = root.contains("buffers") ? &root["buffers"] : nullptr;
-  if (!buffers || !buffers->is_array()) return std::string();
+  if (!buffers || !buffers->is_array()) return false;
   std::vector<bool> empty(buffers->size(), false);
   for (size_t i = 0; i < buffers->size(); ++i) {
     Json& buffer = (*buffers)[i];
@@ -156,7 +156,7 @@ Result<std::string> stubFallbackBuffers(const std::string& file, nlohmann::json&
     buffer["uri"] = "data:application/octet-stream;base64,AA==";
     buffer["byteLength"] = 1;
   }
-  if (fallbacks.empty()) return std::string();
+  if (fallbacks.empty()) return false;
   // Only compressed views may point into a buffer without data (their bytes come from the decoder);
   // anything else (an image, an uncompressed accessor view) would read bytes the file never had.
   if (const Json* views = member(root, "bufferViews"); views && views->is_array())
@@ -175,7 +175,37 @@ Result<std::string> stubFallbackBuffers(const std::string& file, nlohmann::json&
         return bad(file, "bufferViews[{}].extensions.{}.buffer {} is a fallback buffer without data", v, kExt,
                    source->get<uint64_t>());
     }
-  return root.dump();
+  return true;
+}
+
+bool detachViewlessIndices(nlohmann::json& root, std::vector<DetachedIndices>& detached) {
+  detached.clear();
+  const Json* accessors = member(root, "accessors");
+  Json* meshes = root.contains("meshes") ? &root["meshes"] : nullptr;
+  if (!accessors || !accessors->is_array() || !meshes || !meshes->is_array()) return false;
+  for (size_t m = 0; m < meshes->size(); ++m) {
+    Json* prims =
+        (*meshes)[m].is_object() && (*meshes)[m].contains("primitives") ? &(*meshes)[m]["primitives"] : nullptr;
+    if (!prims || !prims->is_array()) continue;
+    for (size_t p = 0; p < prims->size(); ++p) {
+      Json& prim = (*prims)[p];
+      const Json* indices = member(prim, "indices");
+      if (!indices || !indices->is_number_unsigned() || indices->get<uint64_t>() >= accessors->size()) continue;
+      if (member((*accessors)[indices->get<size_t>()], "bufferView")) continue;
+      detached.push_back(DetachedIndices{m, p, indices->get<int>()});
+      prim.erase("indices");
+    }
+  }
+  return !detached.empty();
+}
+
+Status reattachIndices(tinygltf::Model& model, const std::string& file, const std::vector<DetachedIndices>& detached) {
+  for (const DetachedIndices& d : detached) {
+    if (d.mesh >= model.meshes.size() || d.primitive >= model.meshes[d.mesh].primitives.size())
+      return bad(file, "meshes[{}].primitives[{}] went missing while parsing", d.mesh, d.primitive);
+    model.meshes[d.mesh].primitives[d.primitive].indices = d.accessor;
+  }
+  return okStatus();
 }
 
 std::vector<uint8_t> glbWithJson(const std::vector<uint8_t>& glb, std::string_view json) {
@@ -183,7 +213,7 @@ std::vector<uint8_t> glbWithJson(const std::vector<uint8_t>& glb, std::string_vi
   std::memcpy(&oldLength, glb.data() + 8, 4);
   std::memcpy(&oldJsonLength, glb.data() + 12, 4);
   std::string padded(json);
-  while (padded.size() % 4 != 0) padded += ' ';  // GLB chunks are 4-byte aligned, JSON padded with spaces
+  while (padded.size() % 4 != 0) padded += ' ';                // GLB chunks are 4-byte aligned, JSON padded with spaces
   const size_t rest = size_t(oldLength) - 20 - oldJsonLength;  // the chunks after the JSON (glbJsonChunk checked)
   std::vector<uint8_t> out(20 + padded.size() + rest);
   std::memcpy(out.data(), glb.data(), 8);

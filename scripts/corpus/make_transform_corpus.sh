@@ -36,10 +36,10 @@ mkdir -p meshopt-gltf
 gt meshopt source.glb meshopt-gltf/meshopt.gltf
 # KHR_draco_mesh_compression, edgebreaker (default) and sequential.
 gt draco source.glb draco.glb
-gt draco --method sequential source.glb draco-sequential.glb
+gt draco source.glb draco-sequential.glb --method sequential
 gt draco room.glb room-draco.glb
 # The two halves of source.glb merged into one scene again.
-gt merge --merge-scenes part-a.glb part-b.glb merge.glb
+gt merge part-a.glb part-b.glb merge.glb --merge-scenes
 # EXT_mesh_gpu_instancing over the six spheres, plain and meshopt-compressed (QUATERNION and
 # EXPONENTIAL filters on the instance attributes).
 gt instance source.glb instance.glb

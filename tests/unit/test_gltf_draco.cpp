@@ -123,9 +123,10 @@ Doc dracoDoc(const Encoded& e, bool withJoints = false) {
   d.j["meshes"] = Json::array(
       {{{"name", "grid"},
         {"primitives",
-         Json::array({{{"attributes", attributes},
-                       {"indices", indices},
-                       {"extensions", {{"KHR_draco_mesh_compression", {{"bufferView", view}, {"attributes", ids}}}}}}})}}});
+         Json::array(
+             {{{"attributes", attributes},
+               {"indices", indices},
+               {"extensions", {{"KHR_draco_mesh_compression", {{"bufferView", view}, {"attributes", ids}}}}}}})}}});
   d.j["nodes"] = Json::array({{{"name", "grid"}, {"mesh", 0}}});
   d.j["scenes"] = Json::array({{{"nodes", {0}}}});
   d.j["scene"] = 0;
