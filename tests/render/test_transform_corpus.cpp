@@ -4,6 +4,8 @@
 // of its uncompressed source through the same camera.
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 
@@ -99,6 +101,47 @@ TEST(TransformCorpus, EveryVariantRendersLikeItsSource) {
                 diff.maxChannelDiff, diff.fractionWithinTolerance, kChannelTolerance, diff.rmse);
     if (diff.fractionWithinTolerance < kFractionWithin || diff.rmse > kMaxRmse)
       (void)writePng(dir / (stem + "-diff.png"), diff.heatmap);
+  }
+}
+
+// A corrupt compressed stream in a real file: exit code 3 (bad input), one error line naming the
+// JSON path, and no image.
+TEST(TransformCorpus, CorruptStreamsExitWithOneLineAndNoImage) {
+  auto dir = testDir();
+  const std::pair<const char*, std::string> cases[] = {
+      {"draco.glb", "extensions.KHR_draco_mesh_compression: Draco cannot decode"},
+      {"meshopt.glb", "extensions.EXT_meshopt_compression: "}};
+  for (const auto& [name, expected] : cases) {
+    std::ifstream in(kDir / name, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    // Draco streams start with "DRACO"; meshopt vertex streams with 0xA0: break the first of each.
+    size_t at = bytes.find("DRACO");
+    if (std::string(name) == "meshopt.glb") {
+      uint32_t jsonLength = 0;
+      std::memcpy(&jsonLength, bytes.data() + 12, 4);
+      const nlohmann::json json = nlohmann::json::parse(bytes.substr(20, jsonLength));
+      at = std::string::npos;
+      for (const auto& view : json["bufferViews"])
+        if (view.contains("extensions") && view["extensions"]["EXT_meshopt_compression"]["mode"] == "ATTRIBUTES") {
+          at = 20 + jsonLength + 8 + view["extensions"]["EXT_meshopt_compression"].value("byteOffset", size_t(0));
+          break;
+        }
+    }
+    ASSERT_NE(at, std::string::npos) << name;
+    for (size_t i = at + 5; i < at + 40 && i < bytes.size(); ++i) bytes[i] = char(0xFF);
+    if (std::string(name) == "meshopt.glb") bytes[at] = char(0xA7);
+    const fs::path broken = dir / (std::string("broken-") + name);
+    std::ofstream(broken, std::ios::binary) << bytes;
+    const fs::path out = dir / "broken.png";
+    RunResult r = runRayster("render " + broken.string() + " --mode raster --size 32x24 --frames 1 -o " + out.string());
+    EXPECT_EQ(r.exitCode, 3) << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+    size_t errors = 0;
+    for (size_t at = r.output.find("rayster: error: "); at != std::string::npos;
+         at = r.output.find("rayster: error: ", at + 1))
+      ++errors;
+    EXPECT_EQ(errors, 1u) << r.output;
+    EXPECT_FALSE(fs::exists(out));
   }
 }
 

@@ -2,10 +2,13 @@
 // with every attribute Rayster reads (two UV sets, tangents, colours, joints and weights), quantized
 // and not, edgebreaker and sequential, decode to the data they were made from; broken Draco data
 // and accessors that contradict it are refused in one line naming the primitive.
+#include <dlfcn.h>
+
 #include <cmath>
 #include <random>
 
 #include <draco/compression/encode.h>
+#include <tiny_gltf.h>
 
 #include <gtest/gtest.h>
 
@@ -249,6 +252,19 @@ TEST(GltfDraco, RandomCorruptionIsRefusedOrDecodedNeverACrash) {
     }
   }
   log::setLevel(previous);
+}
+
+// libdraco carries a tinygltf of its own (another version and Model layout): the loader must call
+// Debian's libtinygltf, never that copy (CMakeLists.txt links libdraco's archive so that it cannot).
+TEST(GltfDraco, TheLoadersTinygltfIsDebiansNotDracos) {
+  auto member = &tinygltf::TinyGLTF::LoadBinaryFromMemory;
+  void* address = nullptr;
+  static_assert(sizeof member >= sizeof address);
+  std::memcpy(&address, &member, sizeof address);  // Itanium ABI: a non-virtual member's code address first
+  Dl_info info{};
+  ASSERT_NE(dladdr(address, &info), 0);
+  ASSERT_NE(info.dli_fname, nullptr);
+  EXPECT_NE(std::string(info.dli_fname).find("libtinygltf"), std::string::npos) << info.dli_fname;
 }
 
 }  // namespace
