@@ -20,9 +20,10 @@ using Json = nlohmann::json;
 
 constexpr const char* kExt = "EXT_meshopt_compression";
 
-// meshoptimizer's codecs spend at least 2 bits per 16 decoded bytes (vertex) or 4 bits per
-// triangle (index), so no valid stream decodes to more than 64 times its size; a view or fallback
-// buffer claiming more than this cannot be real and would only make us allocate on the file's word.
+// meshoptimizer's vertex codec spends at least 2 bits per 16 decoded bytes, its index codecs more
+// per index, so no valid stream decodes to more than about 64 times its size. A view or fallback
+// buffer claiming more than four times that cannot be real and would only make us allocate on the
+// file's word.
 constexpr uint64_t kMaxExpansion = 256;
 constexpr uint64_t kExpansionSlack = uint64_t(1) << 20;
 
@@ -76,7 +77,7 @@ Result<Stream> readStream(const tinygltf::Value& ext, const std::string& file, c
   return s;
 }
 
-// Every precondition meshoptimizer asserts on (Debian builds it with assertions), checked first.
+// Every precondition meshoptimizer asserts on, checked first: an assertion would abort the process.
 Status checkShape(const Stream& s, const std::string& file, const std::string& path) {
   if (s.mode == "ATTRIBUTES") {
     if (s.byteStride == 0 || s.byteStride % 4 != 0 || s.byteStride > 256)
