@@ -10,5 +10,6 @@ void decodeBc1(const uint8_t block[8], bool withAlpha, uint8_t out[16][4]);  // 
 void decodeBc3(const uint8_t block[16], uint8_t out[16][4]);
 void decodeBc4(const uint8_t block[8], uint8_t out[16][4]);   // unsigned: red only
 void decodeBc5(const uint8_t block[16], uint8_t out[16][4]);  // unsigned: red and green
+void decodeBc7(const uint8_t block[16], uint8_t out[16][4]);  // core/bc7.cpp
 
 }  // namespace rayster

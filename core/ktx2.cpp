@@ -38,7 +38,7 @@ uint64_t u64(const uint8_t* p) {
   return v;
 }
 
-enum class Kind { Plain, Half, Bc1, Bc1Alpha, Bc3, Bc4, Bc5 };
+enum class Kind { Plain, Half, Bc1, Bc1Alpha, Bc3, Bc4, Bc5, Bc7 };
 
 struct Format {
   Kind kind = Kind::Plain;
@@ -82,6 +82,9 @@ std::optional<Format> formatOf(uint32_t vkFormat) {
       return Format{Kind::Bc4, 0, false, 8};
     case 141:  // BC5_UNORM_BLOCK
       return Format{Kind::Bc5, 0, false, 16};
+    case 145:  // BC7_UNORM_BLOCK
+    case 146:  // BC7_SRGB_BLOCK
+      return Format{Kind::Bc7, 0, false, 16};
     default:
       return std::nullopt;
   }
@@ -138,8 +141,11 @@ void decodeBlocks(const uint8_t* src, const Format& f, Image8& image) {
         case Kind::Bc4:
           decodeBc4(block, texels);
           break;
-        default:
+        case Kind::Bc5:
           decodeBc5(block, texels);
+          break;
+        default:
+          decodeBc7(block, texels);
           break;
       }
       // Blocks on the right and bottom edges may hang over the image: their extra texels are dropped.
@@ -158,7 +164,7 @@ uint64_t levelBytes(const Format& f, uint32_t width, uint32_t height) {
 std::string basisRefusal(const char* payload) {
   return fmt::format(
       "payload is Basis Universal {} (KHR_texture_basisu); Rayster has no Basis transcoder (none is packaged in "
-      "Debian): re-encode the texture as BC1/BC3/BC5 or uncompressed KTX2, or PNG",
+      "Debian): re-encode the texture as BC7 or uncompressed KTX2, or PNG",
       payload);
 }
 
@@ -197,8 +203,8 @@ Result<Image8> decodeKtx2(std::span<const uint8_t> bytes, int maxSide) {
   const std::optional<Format> format = formatOf(vkFormat);
   if (!format)
     return ktxError(fmt::format(
-        "vkFormat {} is not supported (Rayster reads 8-bit R/RG/RGB/RGBA/BGR/BGRA, RGBA16F, BC1, BC3, BC4, BC5){}",
-        vkFormat, vkFormat == 145 || vkFormat == 146 ? ": BC7 is not decoded yet" : ""));
+        "vkFormat {} is not supported (Rayster reads 8-bit R/RG/RGB/RGBA/BGR/BGRA, RGBA16F, BC1, BC3, BC4, BC5, BC7)",
+        vkFormat));
   if (scheme != kNone && scheme != kZstd)
     return ktxError(fmt::format("supercompression scheme {} is not supported (none or Zstandard){}", scheme,
                                 scheme == kZlib ? ": zlib" : ""));

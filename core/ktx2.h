@@ -1,7 +1,7 @@
 #pragma once
 // KTX 2.0 textures (glTF's KHR_texture_basisu and image/ktx2): Rayster's own reader. The base mip
 // level of a 2D texture is decoded to the RGBA8 every other image becomes (the renderer makes its
-// own mips): uncompressed 8-bit formats and BC1/BC3/BC4/BC5 payloads, raw or zstd-
+// own mips): uncompressed 8-bit formats and BC1/BC3/BC4/BC5/BC7 payloads, raw or zstd-
 // supercompressed. Basis Universal payloads (ETC1S/BasisLZ, UASTC) need a transcoder Debian does
 // not package and are refused with a message that says so.
 #include <cstdint>
