@@ -9,12 +9,15 @@
 #include <map>
 #include <string>
 
+#include <zstd.h>
 #include <nlohmann/json.hpp>
 
 #include <gtest/gtest.h>
 
+#include "core/bcn.h"
 #include "scene/loader.h"
 #include "tests/render/run_rayster.h"
+#include "tests/unit/ktx2_test_util.h"
 
 namespace rayster::test {
 namespace {
@@ -101,6 +104,85 @@ TEST(TransformCorpus, EveryVariantRendersLikeItsSource) {
                 diff.maxChannelDiff, diff.fractionWithinTolerance, kChannelTolerance, diff.rmse);
     if (diff.fractionWithinTolerance < kFractionWithin || diff.rmse > kMaxRmse)
       (void)writePng(dir / (stem + "-diff.png"), diff.heatmap);
+  }
+}
+
+// source.glb's checker texture as KTX2 through KHR_texture_basisu (no fallback source): RGBA8 with Zstandard
+// supercompression, and BC7 (every 4 x 4 block is one checker colour, encoded exactly in mode 5). Both carry the PNG's
+// texels exactly, so the render is the same image.
+std::vector<uint8_t> bc7Exact(const Image8& image) {
+  std::vector<uint8_t> out;
+  for (int by = 0; by < image.height / 4; ++by)
+    for (int bx = 0; bx < image.width / 4; ++bx) {
+      const uint8_t* c = image.pixel(bx * 4, by * 4);
+      // Mode 5: 7-bit endpoints c >> 1 and (c ± 1) >> 1 with every colour index 1 give c exactly.
+      uint8_t block[16] = {};
+      int at = 0;
+      auto put = [&](int value, int bits) {
+        for (int i = 0; i < bits; ++i, ++at)
+          if ((value >> i) & 1) block[at >> 3] |= uint8_t(1 << (at & 7));
+      };
+      put(1 << 5, 6);  // mode 5
+      put(0, 2);       // no rotation
+      for (int k = 0; k < 3; ++k) put(c[k] >> 1, 7), put((c[k] < 128 ? c[k] + 1 : c[k] - 1) >> 1, 7);
+      put(c[3], 8), put(c[3], 8);
+      for (int t = 0; t < 16; ++t) put(1, t == 0 ? 1 : 2);  // colour indices
+      out.insert(out.end(), block, block + 16);
+    }
+  return out;
+}
+
+TEST(TransformCorpus, Ktx2TexturesRenderLikeThePng) {
+  auto dir = testDir();
+  std::ifstream in(kDir / "source.glb", std::ios::binary);
+  const std::string glb((std::istreambuf_iterator<char>(in)), {});
+  uint32_t jsonLength = 0;
+  std::memcpy(&jsonLength, glb.data() + 12, 4);
+  nlohmann::json json = nlohmann::json::parse(glb.substr(20, jsonLength));
+  const std::string bin = glb.substr(20 + jsonLength + 8);
+  std::ofstream(dir / "source.bin", std::ios::binary) << bin;
+  json["buffers"][0]["uri"] = "source.bin";
+  const nlohmann::json& pngView = json["bufferViews"][json["images"][0]["bufferView"].get<size_t>()];
+  std::ofstream(dir / "checker.png", std::ios::binary)
+      << bin.substr(pngView.value("byteOffset", size_t(0)), pngView["byteLength"].get<size_t>());
+  auto checker = readPng(dir / "checker.png");
+  ASSERT_TRUE(checker.ok()) << checker.error().message;
+  ASSERT_EQ(checker->width % 4, 0);
+
+  std::vector<uint8_t> packed(ZSTD_compressBound(checker->rgba.size()));
+  packed.resize(ZSTD_compress(packed.data(), packed.size(), checker->rgba.data(), checker->rgba.size(), 9));
+  test::Ktx2Spec zstd{43, uint32_t(checker->width), uint32_t(checker->height)};
+  zstd.scheme = 2;
+  zstd.uncompressedLength = checker->rgba.size();
+  const std::vector<uint8_t> bc7 = bc7Exact(*checker);
+  for (size_t b = 0; b < bc7.size(); b += 16) {  // the encoder is exact, or this test means nothing
+    uint8_t texels[16][4];
+    decodeBc7(bc7.data() + b, texels);
+    const int bx = int(b / 16) % (checker->width / 4), by = int(b / 16) / (checker->width / 4);
+    ASSERT_EQ(std::memcmp(texels[0], checker->pixel(bx * 4, by * 4), 4), 0) << "block " << b / 16;
+  }
+  const std::pair<const char*, std::vector<uint8_t>> variants[] = {
+      {"zstd", test::writeKtx2(zstd, packed)},
+      {"bc7", test::writeKtx2({146, uint32_t(checker->width), uint32_t(checker->height)}, bc7)}};
+  const std::string common = " --mode raster --frames 1 --seed 1";
+  const Image8 reference = renderOk(dir, "source", (kDir / "source.glb").string() + common, kSize[0], kSize[1]);
+  for (const auto& [name, ktx2] : variants) {
+    std::ofstream(dir / (std::string(name) + ".ktx2"), std::ios::binary)
+        .write(reinterpret_cast<const char*>(ktx2.data()), std::streamsize(ktx2.size()));
+    nlohmann::json doc = json;
+    doc["images"].push_back({{"uri", std::string(name) + ".ktx2"}});
+    // No fallback `source`: the picture can only come from the KTX2 image.
+    for (auto& texture : doc["textures"]) {
+      texture["extensions"]["KHR_texture_basisu"]["source"] = doc["images"].size() - 1;
+      texture.erase("source");
+    }
+    doc["extensionsUsed"].push_back("KHR_texture_basisu");
+    doc["extensionsRequired"] = {"KHR_texture_basisu"};
+    const fs::path file = dir / (std::string(name) + ".gltf");
+    std::ofstream(file) << doc.dump();
+    const Image8 image = renderOk(dir, name, file.string() + common, kSize[0], kSize[1]);
+    ASSERT_FALSE(image.empty());
+    EXPECT_EQ(compare(reference, image, 0).maxChannelDiff, 0) << name;
   }
 }
 
