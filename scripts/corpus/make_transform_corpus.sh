@@ -40,8 +40,8 @@ gt draco source.glb draco-sequential.glb --method sequential
 gt draco room.glb room-draco.glb
 # The two halves of source.glb merged into one scene again.
 gt merge part-a.glb part-b.glb merge.glb --merge-scenes
-# EXT_mesh_gpu_instancing over the six spheres, plain and meshopt-compressed (QUATERNION and
-# EXPONENTIAL filters on the instance attributes).
+# EXT_mesh_gpu_instancing over the six spheres, plain and meshopt-compressed (the instance
+# attributes in meshopt streams too; gltf-transform filters them with none).
 gt instance source.glb instance.glb
 gt meshopt instance.glb instance-meshopt.glb
 # Restructuring that must not change the picture.
