@@ -107,6 +107,26 @@ TEST(TransformCorpus, EveryVariantRendersLikeItsSource) {
   }
 }
 
+// The hybrid (ray-traced shadows, reflections, GI probes) sees the decoded geometry through the
+// BLASes and the instances through the TLAS: the same comparison for the variants whose geometry or
+// instances differ most from the source (two frames, the same seed; same tolerance).
+TEST(TransformCorpus, HybridRendersOfCompressedAndInstancedVariantsMatchTheSource) {
+  auto dir = testDir();
+  const std::string common = " --frames 2 --seed 1";
+  const Image8 reference = renderOk(dir, "source-hybrid", (kDir / "source.glb").string() + common, kSize[0], kSize[1]);
+  ASSERT_FALSE(reference.empty());
+  for (const char* variant : {"instance-meshopt.glb", "draco.glb", "meshopt.glb"}) {
+    const std::string stem = fs::path(variant).stem().string() + "-hybrid";
+    const Image8 image = renderOk(dir, stem, (kDir / variant).string() + common, kSize[0], kSize[1]);
+    if (image.empty()) continue;
+    const ImageDiff diff = compare(reference, image, kChannelTolerance);
+    EXPECT_GE(diff.fractionWithinTolerance, kFractionWithin) << variant;
+    EXPECT_LE(diff.rmse, kMaxRmse) << variant;
+    std::printf("hybrid %-22s: max %3d/255, %.4f within %d/255, rmse %.5f\n", variant, diff.maxChannelDiff,
+                diff.fractionWithinTolerance, kChannelTolerance, diff.rmse);
+  }
+}
+
 // source.glb's checker texture as KTX2 through KHR_texture_basisu (no fallback source): RGBA8 with Zstandard
 // supercompression, and BC7 (every 4 x 4 block is one checker colour, encoded exactly in mode 5). Both carry the PNG's
 // texels exactly, so the render is the same image.
