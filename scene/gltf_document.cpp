@@ -24,13 +24,16 @@ using Json = nlohmann::json;
 constexpr int kMaxJsonDepth = 64;
 
 // Extensions whose meaning Rayster implements (or, for KHR_mesh_quantization, that only widen
-// the accessor types the reader already handles).
-constexpr std::array<std::string_view, 15> kSupportedExtensions = {
+// the accessor types the reader already handles). The compression ones: docs/gltf-compression.md;
+// the material layers: docs/materials.md.
+constexpr std::array<std::string_view, 19> kSupportedExtensions = {
     "KHR_lights_punctual",        "KHR_texture_transform",    "KHR_materials_emissive_strength",
     "KHR_materials_transmission", "KHR_materials_ior",        "KHR_materials_volume",
     "KHR_materials_specular",     "KHR_mesh_quantization",    "KHR_materials_unlit",
     "KHR_materials_clearcoat",    "KHR_materials_sheen",      "KHR_materials_iridescence",
-    "KHR_materials_anisotropy",   "KHR_materials_dispersion", "KHR_materials_variants"};
+    "KHR_materials_anisotropy",   "KHR_materials_dispersion", "KHR_materials_variants",
+    "KHR_draco_mesh_compression", "EXT_meshopt_compression",  "KHR_texture_basisu",
+    "EXT_mesh_gpu_instancing"};
 
 bool supported(std::string_view name) {
   return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), name) != kSupportedExtensions.end();
@@ -232,10 +235,15 @@ std::vector<int> imageMaterials(const Json& root) {
   auto mark = [&](const Json* slot, size_t material) {
     const Json* index = slot ? member(*slot, "index") : nullptr;
     if (!index || !index->is_number_unsigned() || index->get<uint64_t>() >= textures->size()) return;
-    const Json* source = member((*textures)[index->get<size_t>()], "source");
-    if (!source || !source->is_number_unsigned() || source->get<uint64_t>() >= out.size()) return;
-    int& first = out[source->get<size_t>()];
-    if (first < 0) first = int(material);
+    const Json& texture = (*textures)[index->get<size_t>()];
+    // The texture's image and, with KHR_texture_basisu, its KTX2 image (the other is the fallback).
+    const Json* extensions = member(texture, "extensions");
+    const Json* basisu = extensions ? member(*extensions, "KHR_texture_basisu") : nullptr;
+    for (const Json* source : {member(texture, "source"), basisu ? member(*basisu, "source") : nullptr}) {
+      if (!source || !source->is_number_unsigned() || source->get<uint64_t>() >= out.size()) continue;
+      int& first = out[source->get<size_t>()];
+      if (first < 0) first = int(material);
+    }
   };
   for (size_t m = 0; m < materials->size(); ++m) {
     const Json& material = (*materials)[m];
@@ -287,7 +295,7 @@ Result<std::string_view> glbJsonChunk(const std::string& file, const std::vector
   return std::string_view(reinterpret_cast<const char*>(p) + 20, size_t(jsonLength));
 }
 
-Result<VettedJson> vetJson(const std::string& file, std::string_view text) {
+Result<VettedJson> vetJson(const std::string& file, std::string_view text, bool binary) {
   if (jsonDepth(text) > kMaxJsonDepth) return bad(file, "JSON nests deeper than {} levels", kMaxJsonDepth);
   Json root;
   try {
@@ -314,7 +322,13 @@ Result<VettedJson> vetJson(const std::string& file, std::string_view text) {
         RAYSTER_TRY(checkUri(file, fmt::format("image {}", i), uri->get<std::string>()));
       if (const Json* view = member((*images)[i], "bufferView")) RAYSTER_TRY(checkImageView(file, root, i, *view));
     }
-  return VettedJson{imageMaterials(root)};
+  VettedJson vetted{imageMaterials(root), {}, {}, {}};
+  // What tinygltf 2.7 cannot parse although it is valid (compressed glTF needs both).
+  Result<bool> stubbed = stubFallbackBuffers(file, root, binary, vetted.fallbackBuffers);
+  if (!stubbed) return stubbed.error();
+  const bool detached = detachViewlessIndices(root, vetted.detachedIndices);
+  if (*stubbed || detached) vetted.rewrittenJson = root.dump();
+  return vetted;
 }
 
 tinygltf::FsCallbacks makeConfinedFsCallbacks(ConfinedFs* fs) {

@@ -31,17 +31,34 @@ std::string oneLine(std::string_view text);
 // does (it lets the BIN chunk run 8 bytes past the end) and returns the JSON chunk.
 Result<std::string_view> glbJsonChunk(const std::string& file, const std::vector<uint8_t>& bytes);
 
+// An EXT_meshopt_compression fallback buffer without data: its index and declared byteLength.
+struct FallbackBuffer {
+  int buffer = -1;
+  uint64_t byteLength = 0;
+};
+
+// A primitive's indices accessor that tinygltf must not see (detachViewlessIndices).
+struct DetachedIndices {
+  size_t mesh = 0, primitive = 0;
+  int accessor = -1;
+};
+
 // What the loader learns from the raw JSON before tinygltf reads any image.
 struct VettedJson {
   // Per glTF image: the first material that shows it through a texture, -1 for none. Only images
   // a material shows are decoded and required (gltf_materials.cpp says why).
   std::vector<int> imageMaterial;
+  // EXT_meshopt_compression fallback buffers given stand-in bytes, and the JSON that says so
+  // (empty: parse the file's own JSON).
+  std::vector<FallbackBuffer> fallbackBuffers;
+  std::vector<DetachedIndices> detachedIndices;
+  std::string rewrittenJson;
 };
 
 // Parses the JSON on its own first so that nothing tinygltf does can be steered by the file:
 // bounded nesting (tinygltf converts extras recursively), URIs confined to the folder, data URIs
 // with valid base64, image buffer views inside their buffers, and extensionsRequired supported.
-Result<VettedJson> vetJson(const std::string& file, std::string_view json);
+Result<VettedJson> vetJson(const std::string& file, std::string_view json, bool binary);
 
 // A second line of defence behind vetJson: tinygltf's file access, confined to baseDir. Paths
 // outside it are refused and remembered in `violation`.
@@ -57,6 +74,9 @@ struct ImageDecodeState {
   std::vector<int> imageMaterial;  // from VettedJson
   std::vector<bool> reached;       // per image: its bytes reached the loader (it is not missing)
   std::string error;               // the first failure, without the file name
+  // Per image: why its KTX2 data could not be decoded ("" for none). Not a failure by itself: a
+  // KHR_texture_basisu texture falls back to its `source` (convertMaterials decides).
+  std::vector<std::string> ktxError;
 };
 bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::string* warn, int reqWidth,
                  int reqHeight, const unsigned char* bytes, int size, void* user);
@@ -69,6 +89,31 @@ Result<std::vector<glm::vec3>> readVec3(const tinygltf::Model& model, int access
 Result<std::vector<glm::vec4>> readVec4(const tinygltf::Model& model, int accessor, const std::string& file);
 Result<std::vector<glm::mat4>> readMat4(const tinygltf::Model& model, int accessor, const std::string& file);
 Result<std::vector<uint32_t>> readIndices(const tinygltf::Model& model, int accessor, const std::string& file);
+
+// ---- gltf_meshopt.cpp, gltf_draco.cpp: compressed geometry, decoded before validation ----
+
+// Gives each fallback buffer without data a one-byte data URI (tinygltf refuses a buffer it cannot
+// fill) and lists them; refuses uncompressed views into them. True when `root` changed.
+Result<bool> stubFallbackBuffers(const std::string& file, nlohmann::json& root, bool binary,
+                                 std::vector<FallbackBuffer>& fallbacks);
+// tinygltf 2.7 refuses a primitive whose indices accessor has no buffer view, which is valid glTF
+// and what every Draco primitive has: such indices are taken out of the JSON tinygltf parses and
+// put back into the model afterwards (reattachIndices). True when `root` changed.
+bool detachViewlessIndices(nlohmann::json& root, std::vector<DetachedIndices>& detached);
+Status reattachIndices(tinygltf::Model& model, const std::string& file, const std::vector<DetachedIndices>& detached);
+// The GLB `glb` (checked by glbJsonChunk) with its JSON chunk replaced by `json`.
+std::vector<uint8_t> glbWithJson(const std::vector<uint8_t>& glb, std::string_view json);
+// Decodes every EXT_meshopt_compression buffer view into its own buffer range.
+Status decodeMeshopt(tinygltf::Model& model, const std::string& file, const std::vector<FallbackBuffer>& fallbacks);
+// Decodes every KHR_draco_mesh_compression primitive into new accessors the primitive then uses.
+Status decodeDraco(tinygltf::Model& model, const std::string& file);
+
+// ---- gltf_instancing.cpp ----
+
+// EXT_mesh_gpu_instancing of node `index`: one local transform per instance (its TRS relative to
+// the node), or none when the node has no such extension.
+Result<std::vector<SceneNode>> gpuInstances(const tinygltf::Model& model, const tinygltf::Node& node, size_t index,
+                                            const std::string& file);
 
 // ---- gltf_meshes.cpp ----
 

@@ -54,7 +54,8 @@ unsigned glbLength(const std::vector<uint8_t>& bytes) {
 }
 
 // Reads and parses the file; `images` learns which images a material shows and which were found.
-Result<tinygltf::Model> parse(const fs::path& path, const std::string& file, ImageDecodeState& images) {
+Result<tinygltf::Model> parse(const fs::path& path, const std::string& file, ImageDecodeState& images,
+                              std::vector<FallbackBuffer>& fallbacks, std::vector<DetachedIndices>& detached) {
   Result<std::vector<uint8_t>> bytes = readFile(path, file);
   if (!bytes) return bytes.error();
   const bool binary = bytes->size() >= 4 && std::memcmp(bytes->data(), "glTF", 4) == 0;
@@ -64,8 +65,19 @@ Result<tinygltf::Model> parse(const fs::path& path, const std::string& file, Ima
     if (!chunk) return chunk.error();
     json = *chunk;
   }
-  Result<VettedJson> vetted = vetJson(file, json);
+  Result<VettedJson> vetted = vetJson(file, json, binary);
   if (!vetted) return vetted.error();
+  // EXT_meshopt_compression fallback buffers: tinygltf parses a JSON that gives them stand-in bytes.
+  std::vector<uint8_t> rewrittenGlb;
+  if (!vetted->rewrittenJson.empty()) {
+    json = vetted->rewrittenJson;
+    if (binary) {
+      rewrittenGlb = glbWithJson(*bytes, json);
+      bytes->swap(rewrittenGlb);
+    }
+  }
+  fallbacks = vetted->fallbackBuffers;
+  detached = vetted->detachedIndices;
   images.imageMaterial = vetted->imageMaterial;
   images.reached.assign(images.imageMaterial.size(), false);
 
@@ -282,6 +294,30 @@ Status addMeshInstance(MeshBuilder& meshes, std::vector<int>& meshMap, int index
   return okStatus();
 }
 
+// The node's mesh once, or once per EXT_mesh_gpu_instancing element, each under a child node of
+// its own (gltf_instancing.cpp).
+Status addMeshInstances(MeshBuilder& meshes, std::vector<int>& meshMap, int index, int32_t self,
+                        const glm::mat4& world) {
+  Scene& scene = meshes.scene;
+  Result<std::vector<SceneNode>> copies =
+      gpuInstances(meshes.model, meshes.model.nodes[size_t(index)], size_t(index), meshes.file);
+  if (!copies) return copies.error();
+  if (copies->empty()) return addMeshInstance(meshes, meshMap, index, self, world);
+  for (SceneNode& copy : *copies) {
+    copy.parent = self;
+    copy.worldFromNode = world * copy.parentFromNode();
+    if (!finite(copy.worldFromNode)) return bad(meshes.file, "node {} has a non-finite instance transform", index);
+    const int32_t child = int32_t(scene.nodes.size());
+    const glm::mat4 childWorld = copy.worldFromNode;
+    const std::string name = copy.name;
+    scene.nodes.push_back(std::move(copy));
+    const size_t before = scene.instances.size();
+    RAYSTER_TRY(addMeshInstance(meshes, meshMap, index, child, childWorld));
+    if (scene.instances.size() > before) scene.instances.back().name = name;
+  }
+  return okStatus();
+}
+
 // Walks the default scene's hierarchy into Scene::nodes (parents first), instances, cameras and
 // lights. sceneNodeOf[glTF node] is its index in Scene::nodes, -1 where it is not reached.
 Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene& scene,
@@ -312,7 +348,7 @@ Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene
     sceneNodeOf[size_t(index)] = self;
     scene.nodes.push_back(std::move(*converted));
 
-    if (node.mesh >= 0) RAYSTER_TRY(addMeshInstance(meshes, meshMap, index, self, world));
+    if (node.mesh >= 0) RAYSTER_TRY(addMeshInstances(meshes, meshMap, index, self, world));
     // Cameras and lights remember their node: convertAnimations() keeps the link if it moves.
     if (node.camera >= 0) {
       RAYSTER_TRY(addCamera(model, node, world, scene, file));
@@ -333,8 +369,14 @@ Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene
 Result<Scene> loadGltf(const fs::path& path) {
   const std::string file = path.filename().string();
   gltf::ImageDecodeState images;
-  Result<tinygltf::Model> model = gltf::parse(path, file, images);
+  std::vector<gltf::FallbackBuffer> fallbacks;
+  std::vector<gltf::DetachedIndices> detached;
+  Result<tinygltf::Model> model = gltf::parse(path, file, images, fallbacks, detached);
   if (!model) return model.error();
+  RAYSTER_TRY(gltf::reattachIndices(*model, file, detached));
+  // Compressed geometry becomes plain buffer data first, so everything after reads it as such.
+  RAYSTER_TRY(gltf::decodeMeshopt(*model, file, fallbacks));
+  RAYSTER_TRY(gltf::decodeDraco(*model, file));
   RAYSTER_TRY(gltf::validateModel(*model, file));
   Scene scene;
   scene.name = path.stem().string();

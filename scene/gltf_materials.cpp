@@ -4,6 +4,7 @@
 
 #include <stb/stb_image.h>  // declarations only: the implementation lives in core/image_io.cpp
 
+#include "core/ktx2.h"
 #include "core/log.h"
 #include "scene/gltf_internal.h"
 
@@ -213,6 +214,24 @@ bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::
     if (err) *err += message + "\n";
     return false;
   };
+  auto fill = [&](int width, int height, const uint8_t* rgba) {
+    image->width = width;
+    image->height = height;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image.assign(rgba, rgba + size_t(width) * size_t(height) * 4);
+  };
+  if (bytes && size > 0 && isKtx2({bytes, size_t(size)})) {
+    Result<Image8> ktx = decodeKtx2({bytes, size_t(size)}, kMaxImageSide);
+    if (!ktx) {
+      if (state->ktxError.size() <= index) state->ktxError.resize(index + 1);
+      state->ktxError[index] = ktx.error().message;
+      return true;  // left empty: convertMaterials uses a fallback image or says why it cannot
+    }
+    fill(ktx->width, ktx->height, ktx->rgba.data());
+    return true;
+  }
   int width = 0, height = 0, channels = 0;
   if (!bytes || size <= 0 || !stbi_info_from_memory(bytes, size, &width, &height, &channels))
     return fail(fmt::format("image {} cannot be decoded ({})", imageIndex,
@@ -225,12 +244,7 @@ bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::
   if (!pixels)
     return fail(fmt::format("image {} cannot be decoded ({})", imageIndex,
                             stbi_failure_reason() ? stbi_failure_reason() : "unknown error"));
-  image->width = width;
-  image->height = height;
-  image->component = 4;
-  image->bits = 8;
-  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-  image->image.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
+  fill(width, height, pixels);
   stbi_image_free(pixels);
   return true;
 }
@@ -249,6 +263,8 @@ Result<std::vector<int32_t>> convertImages(const tinygltf::Model& model, const s
                   src.uri.empty() ? src.name : src.uri);
       continue;
     }
+    // A KTX2 image that did not decode: the textures that show it decide (a fallback, or the cause).
+    if (i < images.ktxError.size() && !images.ktxError[i].empty()) continue;
     // The index came from the raw JSON (vetJson); tinygltf's array is the same one, checked anyway.
     const bool named = size_t(material) < model.materials.size() && !model.materials[size_t(material)].name.empty();
     const std::string name = named ? model.materials[size_t(material)].name : fmt::format("material{}", material);
@@ -258,6 +274,40 @@ Result<std::vector<int32_t>> convertImages(const tinygltf::Model& model, const s
     scene.images.push_back(std::move(*img));
   }
   return imageMap;
+}
+
+constexpr int kNoImage = -1, kNotShown = -2;
+
+// The scene image texture `index` shows: its KHR_texture_basisu (KTX2) image where that decoded,
+// else its `source`, the fallback the extension asks for (with a warning when the KTX2 one was
+// refused). kNoImage: it names no image; kNotShown: no material shows it.
+Result<int> textureSource(const tinygltf::Model& model, size_t index, const ImageDecodeState& images,
+                          const std::vector<int32_t>& imageMap, const std::string& file) {
+  const tinygltf::Texture& src = model.textures[index];
+  int basisu = -1;
+  if (auto it = src.extensions.find("KHR_texture_basisu"); it != src.extensions.end()) {
+    const double v = numberOr(it->second, "source", -1.0);
+    if (v < 0.0 || v >= double(model.images.size()) || v != double(int(v)))
+      return bad(file, "textures[{}].extensions.KHR_texture_basisu.source does not name an image", index);
+    basisu = int(v);
+  }
+  const bool hasSource = src.source >= 0 && size_t(src.source) < imageMap.size();
+  if (basisu < 0 && !hasSource) return kNoImage;
+  auto ktxError = [&](int image) -> std::string {
+    return size_t(image) < images.ktxError.size() ? images.ktxError[size_t(image)] : std::string();
+  };
+  if (basisu >= 0 && imageMap[size_t(basisu)] >= 0) return int(imageMap[size_t(basisu)]);
+  if (hasSource && imageMap[size_t(src.source)] >= 0) {
+    if (basisu >= 0 && !ktxError(basisu).empty())
+      log::warn("{}: textures[{}] KHR_texture_basisu image {}: {}; using its fallback image {}", file, index, basisu,
+                ktxError(basisu), src.source);
+    return int(imageMap[size_t(src.source)]);
+  }
+  for (int image : {basisu, hasSource ? src.source : -1})
+    if (image >= 0 && !ktxError(image).empty())
+      return bad(file, "textures[{}]{} image {}: {}", index, image == basisu ? " KHR_texture_basisu" : "", image,
+                 ktxError(image));
+  return kNotShown;
 }
 
 Status convertMaterials(const tinygltf::Model& model, const std::string& file, const ImageDecodeState& images,
@@ -270,14 +320,16 @@ Status convertMaterials(const tinygltf::Model& model, const std::string& file, c
   std::vector<int32_t> textureMap(model.textures.size(), -1);
   for (size_t i = 0; i < model.textures.size(); ++i) {
     const tinygltf::Texture& src = model.textures[i];
-    // A texture whose only source is an extension (KTX2, WebP) has no image we can read.
-    if (src.source < 0 || size_t(src.source) >= imageMap->size()) {
-      log::warn("{}: texture {} has no PNG or JPEG image; ignored", file, i);
+    Result<int> source = textureSource(model, i, images, *imageMap, file);
+    if (!source) return source.error();
+    // A texture whose only source is an extension Rayster does not read (WebP) has no image.
+    if (*source == kNoImage) {
+      log::warn("{}: texture {} has no PNG, JPEG or KTX2 image; ignored", file, i);
       continue;
     }
-    if ((*imageMap)[size_t(src.source)] < 0) continue;  // no material shows it, so nothing uses this texture
+    if (*source == kNotShown) continue;  // no material shows it, so nothing uses this texture
     Texture t;
-    t.image = uint32_t((*imageMap)[size_t(src.source)]);
+    t.image = uint32_t(*source);
     if (src.sampler >= 0 && size_t(src.sampler) < model.samplers.size()) {
       t.sampler = uint32_t(src.sampler);
     } else {

@@ -26,6 +26,7 @@ PACKAGES=(
   libtinyexr-dev libgtest-dev libgmock-dev
   libglvnd0 libgl1 libegl1 libopengl0  # bundled for GPU machines by scripts/bundle-gpu.sh
   libtinygltf-dev libtinyobjloader-dev assimp-testmodels clang libfuzzer-14-dev
+  libdraco-dev libmeshoptimizer-dev libzstd-dev  # compressed glTF: Draco, meshopt, KTX2 zstd
   clang-format-14  # scripts/format.sh: the formatting CI checks (.ci/run)
   libglfw3-dev libimgui-dev xvfb xauth  # the viewer, and its tests under a virtual X server
 )

@@ -56,6 +56,7 @@ class TempDir {
 struct Doc {
   Json j = Json::object();
   std::vector<uint8_t> bin;
+  Json extraBuffers = Json::array();  // buffers 1, 2, … as given (e.g. EXT_meshopt_compression fallbacks)
 
   Doc() { j["asset"] = {{"version", "2.0"}}; }
 
@@ -96,6 +97,7 @@ struct Doc {
       buffer["uri"] = binUri.empty() ? "data:application/octet-stream;base64," + base64(bin) : binUri;
       out["buffers"] = Json::array({buffer});
     }
+    for (const Json& b : extraBuffers) out["buffers"].push_back(b);
     return out.dump();
   }
 
@@ -103,6 +105,7 @@ struct Doc {
     Json out = j;
     while (bin.size() % 4) bin.push_back(0);
     if (!bin.empty()) out["buffers"] = Json::array({Json{{"byteLength", bin.size()}}});
+    for (const Json& b : extraBuffers) out["buffers"].push_back(b);
     std::string json = out.dump();
     while (json.size() % 4) json += ' ';
     std::string bytes = "glTF";

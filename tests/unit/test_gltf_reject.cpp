@@ -186,10 +186,9 @@ TEST(GltfReject, ImageBufferViewOutsideBuffer) {
 TEST(GltfReject, RequiredUnknownExtension) {
   TempDir dir;
   Doc d = quadDoc();
-  d.j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-  d.j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
-  expectRefused(loadBytes(dir, d.gltf()),
-                "requires extension KHR_draco_mesh_compression, which Rayster does not support");
+  d.j["extensionsUsed"] = {"EXT_rayster_unknown"};
+  d.j["extensionsRequired"] = {"EXT_rayster_unknown"};
+  expectRefused(loadBytes(dir, d.gltf()), "requires extension EXT_rayster_unknown, which Rayster does not support");
 }
 
 TEST(GltfReject, UndefinedMode) {

@@ -35,7 +35,6 @@ const std::map<std::string, std::string> kExceptions = {
     // Files without validator errors Rayster refuses:
     {"BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf",
      "requires KHR_technique_webgl (glTF 1.0 shaders), which no 2.0 renderer supports; the validator only warns"},
-    {"draco/2CylinderEngine.gltf", "requires KHR_draco_mesh_compression, not read yet (issue 15 item 2)"},
 };
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
