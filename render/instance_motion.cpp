@@ -9,12 +9,14 @@
 
 namespace rayster::render {
 
-void InstanceMotion::beginRun(const scene::Scene& scene, bool animated) {
+void InstanceMotion::beginRun(rhi::Context& ctx, const scene::Scene& scene, bool animated) {
+  ctx_ = &ctx;
   if (animated) {
     pose_.nodes = scene.nodes;
     pose_.instances = scene.instances;
     pose_.animations = scene.animations;
     pose_.cameras = scene.cameras;
+    pose_.lights = scene.lights;
   }
   dirty_ = dirty_ || !overrides_.empty();
 }
@@ -47,6 +49,26 @@ glm::mat4 InstanceMotion::get(const scene::Scene& scene, uint32_t sceneInstance)
   return sceneInstance < scene.instances.size() ? scene.instances[sceneInstance].worldFromObject : glm::mat4(1.0f);
 }
 
+bool InstanceMotion::writeLights(GpuScene& gpu) {
+  bool follows = false;
+  for (const scene::Light& l : pose_.lights) follows = follows || l.node >= 0;
+  if (!follows || pose_.lights.size() != gpu.lightCount || !ctx_) return false;
+  std::vector<gpu::LightRecord> rows;
+  for (const scene::Light& l : pose_.lights) rows.push_back(toRecord(l));
+  const size_t bytes = rows.size() * sizeof(gpu::LightRecord);
+  const bool moved = lightRows_.size() != rows.size() || std::memcmp(lightRows_.data(), rows.data(), bytes) != 0;
+  lightRows_ = rows;
+  if (!moved && gpu.lights.mapped()) return false;
+  if (!gpu.lights.mapped()) {
+    // Uploaded to device memory like every static table; lights that follow nodes are rewritten
+    // from the host each frame, as the instance table is (one frame in flight).
+    ctx_->waitIdle();
+    gpu.lights = rhi::Buffer(*ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, rhi::MemoryUsage::Upload, "lights");
+  }
+  std::memcpy(gpu.lights.mapped(), rows.data(), bytes);
+  return moved;
+}
+
 InstanceMotion::Update InstanceMotion::update(GpuScene& gpu, bool animated, float seconds, bool first) {
   if (animated) scene::evaluateAnimations(pose_, seconds, true);
   if (!animated && !dirty_ && !settling_) return {};
@@ -69,6 +91,7 @@ InstanceMotion::Update InstanceMotion::update(GpuScene& gpu, bool animated, floa
   }
   std::memcpy(gpu.instances.mapped(), gpu.instanceRecords.data(),
               gpu.instanceRecords.size() * sizeof(gpu::InstanceRecord));
+  if (animated) u.lightsMoved = writeLights(gpu);
   settling_ = dirty_;
   dirty_ = false;
   tlasStale_ = true;

@@ -332,7 +332,7 @@ Status Renderer::Impl::beginRun(const RenderSettings& s) {
   }
 
   run->animated = scene.animated() && !gpu.instanceRecords.empty();
-  motion.beginRun(scene, run->animated);
+  motion.beginRun(ctx, scene, run->animated);
   for (const RenderSettings::Move& m : s.moves)
     if (findInstance(m.instance) < 0)
       return makeError(ExitCode::BadArguments, "--move-instance: scene '{}' has no instance '{}'", scene.name,

@@ -57,7 +57,9 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
       motion.set(ctx, gpu, i, w);
     }
   // The pose of this frame first: a camera on an animated node follows it.
-  const bool moved0 = motion.update(gpu, r.animated, s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0).moved;
+  const InstanceMotion::Update posed =
+      motion.update(gpu, r.animated, s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0);
+  const bool moved0 = posed.moved;
   const scene::Camera& base = motion.camera(scene, *r.cam, r.animated);
   const scene::Camera camera = control.camera ? *control.camera : s.cameraPath ? cameraOnPath(base, s, f) : base;
   // A cut (the first frame of a run, a jump of the camera, or a listed frame) restarts every history.
@@ -72,7 +74,7 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   graph::RenderGraph graph(&ctx, &transients, &histories);
   const graph::AccelHandle tlas = beginFrameGraph(graph, gpu, constants, nearest);
   const FrameInputs in{pipelines, gpu, constants, nearest, linear, {s.width, s.height}, tlas};
-  bool moving = s.cameraPath || control.moving;
+  bool moving = s.cameraPath || control.moving || posed.lightsMoved;
   {
     bool moved = moved0;
     // Skinned and morphed meshes take the pose on the first frame and, while animated, every frame
@@ -94,7 +96,8 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   const GBuffer gb = out.primaryUsed == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
   FrameImages images;
   if (rasterMode) {
-    const RasterFrameOutput o = raster.record(graph, in, gb, scene, camera, shadowLights());
+    // Shadow maps look from the lights where they are now (lights on animated nodes move).
+    const RasterFrameOutput o = raster.record(graph, in, gb, motion.pose(scene, r.animated), camera, shadowLights());
     images = {o.visibility, o.visibility, o.specular, o.specular, o.ao, o.ao, o.indirect, o.indirect, o.hdr};
   } else {
     images = recordHybrid(graph, in, gb, camera, moving);

@@ -3,6 +3,7 @@
 // shadows included), and moving instances get motion vectors.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -170,6 +171,65 @@ TEST(AnimatedCamera, FollowsItsAnimatedNode) {
     EXPECT_TRUE(redAt(start, kW / 2));
     EXPECT_TRUE(redAt(end, kW / 2));
     EXPECT_FALSE(redAt(end, kW * 9 / 10));
+  }
+}
+
+}  // namespace
+}  // namespace rayster::test
+
+namespace rayster::test {
+namespace {
+
+// A light on an animated node moves with it (glTF 2.0: a light is placed by its node): with the
+// point light made a child of the slider, the floor is lit from further left at t = 0 and further
+// right at t = 1 than with the light left where it was, in the hybrid, the raster mode and the path
+// tracer (the slider itself is in the same place in both, so only the light makes the difference).
+TEST(AnimatedLight, FollowsItsAnimatedNode) {
+  auto dir = testDir();
+  const std::filesystem::path fixed = writeAnimatedGltf(dir);
+  std::string text;
+  {
+    std::ifstream in(fixed);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  auto replace = [&](const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  replace(R"("scenes": [{"nodes": [0, 1, 2, 3]}])", R"("scenes": [{"nodes": [0, 1, 2]}])");
+  replace(R"("name": "slider", "translation": [-1.5, 0, 0]})",
+          R"("name": "slider", "translation": [-1.5, 0, 0], "children": [3]})");
+  const std::filesystem::path follow = dir / "follow.gltf";
+  std::ofstream(follow) << text;
+  ASSERT_FALSE(HasFailure());
+  // Right half minus left half of the floor (the bottom 40 % of the image), in mean luminance.
+  auto rightMinusLeft = [](const Image8& img) {
+    double left = 0, right = 0;
+    for (int y = kH * 6 / 10; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        const uint8_t* p = img.pixel(x, y);
+        (x < kW / 2 ? left : right) += 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+      }
+    return (right - left) / double(kW / 2 * (kH - kH * 6 / 10));
+  };
+  for (const char* mode : {"hybrid", "raster", "pathtrace"}) {
+    SCOPED_TRACE(mode);
+    const std::string args = " --taa off --frames 1 --pause --spp 8 --mode " + std::string(mode);
+    double asym[2][2];  // [follows][time]
+    for (int t = 0; t < 2; ++t) {
+      const std::string time = " --time " + std::to_string(t);
+      Image8 moving = renderOk(dir, std::string(mode) + "f" + std::to_string(t), follow.string() + args + time, kW, kH);
+      Image8 still = renderOk(dir, std::string(mode) + "s" + std::to_string(t), fixed.string() + args + time, kW, kH);
+      ASSERT_FALSE(HasFailure());
+      asym[1][t] = rightMinusLeft(moving);
+      asym[0][t] = rightMinusLeft(still);
+    }
+    std::printf("[animated light] %-9s right-left t0: follows %.1f fixed %.1f  t1: follows %.1f fixed %.1f\n", mode,
+                asym[1][0], asym[0][0], asym[1][1], asym[0][1]);
+    // The light goes from x = -1 to x = +2 (the fixed one stays at x = 0.5).
+    EXPECT_LT(asym[1][0], asym[0][0] - 3.0) << "t = 0: lit from the left";
+    EXPECT_GT(asym[1][1], asym[0][1] + 3.0) << "t = 1: lit from the right";
   }
 }
 
