@@ -93,7 +93,9 @@ struct Material {
   bool hasIridescence() const { return iridescence > 0.0f; }
   bool hasAnisotropy() const { return anisotropyStrength > 0.0f; }
   // Whether any layer above applies (the GPU gets a layer record only then).
-  bool layered() const { return !unlit && (hasClearcoat() || hasSheen() || hasIridescence() || hasAnisotropy()); }
+  bool layered() const {
+    return !unlit && (hasClearcoat() || hasSheen() || hasIridescence() || hasAnisotropy() || dispersion > 0.0f);
+  }
 
   // Every texture slot, for code that treats them alike (merging scenes, counting uses).
   std::array<TextureRef*, 17> textureRefs() {

@@ -252,6 +252,35 @@ TEST(Layers, AnisotropyStretchesTheHighlightAlongItsDirection) {
       << "stretched along one axis, and along the other a quarter turn later: " << along << ", " << turned;
 }
 
+// A glass ball (η 1.5, a volume) in front of a lit band above its centre: seen through the ball,
+// the band's image depends on η. Without dispersion every path is grey, so the ball's mean colour
+// is exactly grey; with dispersion 5 (Abbe number 4) red, green and blue refract with different η
+// and see different shares of the band, green's between red's and blue's (η rises with frequency).
+TEST(Layers, DispersionSplitsTheColoursAGlassBallRefracts) {
+  auto dir = testDir();
+  auto ball = [&](const std::string& name, float dispersion) {
+    MaterialSpec g = glass(1.5f, 1.0f);
+    if (dispersion > 0) g.layers = fmt::format(R"("KHR_materials_dispersion": {{"dispersion": {}}})", dispersion);
+    SceneSpec s;
+    s.models = {
+        {"ball", unitSphere(32), g},
+        {"band", unitQuad(), emitter(1.0f), glm::vec3(3.0f, 0.6f, 1.0f), glm::vec3(0), glm::vec3(0, 0.45f, -1.5f)}};
+    s.lights = {darkLight()};
+    s.camera = {{0, 0, 2.5f}, {0, 0, 0}, 28.0f};
+    Rendered r = pathTrace(dir, name, s, 32);
+    EXPECT_FALSE(r.hdr.empty());
+    return sphereRing(r.hdr, s.camera, 0.2, 1.01).rgb;
+  };
+  const glm::dvec3 grey = ball("plain", 0.0f), split = ball("dispersive", 5.0f);
+  std::printf("[dispersion] plain %.4f %.4f %.4f  dispersive %.4f %.4f %.4f\n", grey.r, grey.g, grey.b, split.r,
+              split.g, split.b);
+  EXPECT_GT(grey.g, 0.05) << "the band shows through the ball";
+  EXPECT_NEAR(grey.r, grey.b, 1e-5) << "no dispersion: every path is grey";
+  EXPECT_NEAR(grey.g, grey.b, 1e-5);
+  EXPECT_GT(std::abs(split.r - split.b), 0.1 * (split.r + split.b) / 2) << "red and blue see different shares";
+  EXPECT_TRUE((split.r - split.g) * (split.g - split.b) > 0) << "green's share lies between red's and blue's";
+}
+
 // KHR_materials_variants: --variant picks a variant's material, an unknown one is refused (exit 3)
 // naming the variants; the hybrid warns once what it approximates of layered materials.
 TEST(Layers, VariantIsSelectedOnTheCommandLineAndTheHybridSaysWhatItApproximates) {
