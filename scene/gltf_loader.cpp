@@ -165,8 +165,13 @@ Status addLight(const tinygltf::Model& model, const tinygltf::Node& node, int li
     light.type = LightType::Spot;
   else if (src.type == "directional")
     light.type = LightType::Directional;
-  else
-    return bad(file, "light '{}' has unknown type '{}'", light.name, src.type);
+  else {
+    // The schema allows any string here (the validator only warns): a type glTF 2.0 does not
+    // define is not drawn.
+    log::warn("{}: light '{}' has type '{}', which KHR_lights_punctual does not define; not drawn", file, light.name,
+              src.type);
+    return okStatus();
+  }
   if (src.color.size() == 3) light.color = glm::vec3(src.color[0], src.color[1], src.color[2]);
   light.intensity = float(src.intensity);
   light.position = glm::vec3(world[3]);
@@ -319,8 +324,9 @@ Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene
       scene.cameras.back().node = self;
     }
     if (int light = nodeLight(node); light != -1) {
+      const size_t lights = scene.lights.size();
       RAYSTER_TRY(addLight(model, node, light, world, scene, file));
-      scene.lights.back().node = self;
+      if (scene.lights.size() > lights) scene.lights.back().node = self;
     }
     for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.emplace_back(*child, self);
   }
