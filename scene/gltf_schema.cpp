@@ -256,8 +256,8 @@ Status checkBuffers(const Checker& c) {
         base64 = std::isalnum(static_cast<unsigned char>(u[k])) || u[k] == '+' || u[k] == '/';
       const uint64_t holds = chars / 4 * 3 - padding;
       if (base64 && holds < b["byteLength"].get<uint64_t>())
-        return c.fail(Checker::at(p, "byteLength"), "{}, but the data URI holds {} bytes", b["byteLength"].get<uint64_t>(),
-                      holds);
+        return c.fail(Checker::at(p, "byteLength"), "{}, but the data URI holds {} bytes",
+                      b["byteLength"].get<uint64_t>(), holds);
     }
   }
   return okStatus();
@@ -364,7 +364,8 @@ Status checkAccessors(const Checker& c) {
       return c.fail(Checker::at(p, "byteOffset"), "{} is not a multiple of the component size {}", offset, bytes);
     if (viewIndex && bytes && components) {
       const Json& view = c.element("bufferViews", viewIndex->get<size_t>());
-      const uint64_t viewOffset = view.value("byteOffset", uint64_t(0)), viewLength = view["byteLength"].get<uint64_t>();
+      const uint64_t viewOffset = view.value("byteOffset", uint64_t(0)),
+                     viewLength = view["byteLength"].get<uint64_t>();
       if ((viewOffset + offset) % bytes != 0)
         return c.fail(p, "buffer view {} byteOffset {} + byteOffset {} is not a multiple of the component size {}",
                       viewIndex->get<uint64_t>(), viewOffset, offset, bytes);

@@ -41,8 +41,7 @@ class Checker {
 
   template <class... A>
   Error fail(const std::string& path, fmt::format_string<A...> f, A&&... args) const {
-    return Error{ExitCode::BadInput,
-                 fmt::format("{}: {}: {}", file_, path, fmt::format(f, std::forward<A>(args)...))};
+    return Error{ExitCode::BadInput, fmt::format("{}: {}: {}", file_, path, fmt::format(f, std::forward<A>(args)...))};
   }
 
   // The property, or nullptr when absent (or `o` is not an object).
@@ -53,8 +52,7 @@ class Checker {
   const Json& element(const char* name, size_t i) const { return root_.at(name).at(i); }
 
   // Optional (or required) property `key` of `o` at `path`: an index into top-level `array`.
-  Status ref(const Json& o, const char* key, const std::string& path, const char* array,
-             bool required = false) const;
+  Status ref(const Json& o, const char* key, const std::string& path, const char* array, bool required = false) const;
   // An integer index property into a count known to the caller (e.g. a light in an extension).
   Status indexInto(const Json& o, const char* key, const std::string& path, size_t count, const char* what,
                    bool required = false) const;

@@ -200,7 +200,8 @@ Status checkVertexIndices(const tinygltf::Model& model, size_t m, size_t p, cons
   Status status = okStatus();
   data.forEach(sparse[size_t(prim.indices)], [&](size_t i, const double* v) {
     if (v[0] == restart)
-      status = bad(file, "meshes[{}].primitives[{}].indices: index {} is {}, the primitive restart value", m, p, i, v[0]);
+      status =
+          bad(file, "meshes[{}].primitives[{}].indices: index {} is {}, the primitive restart value", m, p, i, v[0]);
     else if (v[0] >= double(vertices))
       status = bad(file, "meshes[{}].primitives[{}].indices: index {} is {}, not below the vertex count {}", m, p, i,
                    v[0], vertices);
@@ -220,7 +221,8 @@ Status checkAccessorData(const tinygltf::Model& model, const std::string& file) 
   for (size_t a = 0; a < model.animations.size(); ++a)
     for (size_t s = 0; s < model.animations[a].samplers.size(); ++s) {
       const int input = model.animations[a].samplers[s].input;
-      if (input >= 0 && size_t(input) < sparse.size()) RAYSTER_TRY(checkKeyTimes(model, a, s, sparse[size_t(input)], file));
+      if (input >= 0 && size_t(input) < sparse.size())
+        RAYSTER_TRY(checkKeyTimes(model, a, s, sparse[size_t(input)], file));
     }
   for (size_t m = 0; m < model.meshes.size(); ++m)
     for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p)

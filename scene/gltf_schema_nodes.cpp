@@ -75,8 +75,8 @@ Status checkPrimitive(const Checker& c, const Json& prim, const std::string& p, 
   std::map<std::string, std::set<long>> sets;
   // Every attribute has POSITION's count (or, without POSITION, the first one's).
   int64_t vertexCount = -1;
-  if (const Json* position = Checker::find(*attributes, "POSITION"); position && position->is_number_unsigned() &&
-                                                                      position->get<uint64_t>() < c.count("accessors"))
+  if (const Json* position = Checker::find(*attributes, "POSITION");
+      position && position->is_number_unsigned() && position->get<uint64_t>() < c.count("accessors"))
     vertexCount = c.element("accessors", position->get<size_t>())["count"].get<int64_t>();
   for (auto it = attributes->begin(); it != attributes->end(); ++it) {
     const std::string name = it.key(), at = Checker::at(ap, name.c_str());
@@ -123,8 +123,8 @@ Status checkPrimitive(const Checker& c, const Json& prim, const std::string& p, 
   // Texture coordinates the material's textures read must be there.
   if (const Json* material = Checker::find(prim, "material")) {
     std::vector<std::pair<std::string, int64_t>> uses;
-    texCoordsOf(c.element("materials", material->get<size_t>()), fmt::format("materials[{}]", material->get<uint64_t>()),
-                uses);
+    texCoordsOf(c.element("materials", material->get<size_t>()),
+                fmt::format("materials[{}]", material->get<uint64_t>()), uses);
     for (const auto& [texture, set] : uses)
       if (!sets["TEXCOORD"].count(long(set)))
         return c.fail(Checker::at(p, "material"), "{} reads TEXCOORD_{}, which the primitive does not have", texture,
@@ -199,8 +199,8 @@ bool decomposable(const Json& m) {
   double v[16];
   for (int i = 0; i < 16; ++i) v[i] = m[size_t(i)].get<double>();
   if (v[3] != 0.0 || v[7] != 0.0 || v[11] != 0.0 || v[15] != 1.0) return false;
-  const double det = v[0] * (v[5] * v[10] - v[9] * v[6]) - v[4] * (v[1] * v[10] - v[9] * v[2]) +
-                     v[8] * (v[1] * v[6] - v[5] * v[2]);
+  const double det =
+      v[0] * (v[5] * v[10] - v[9] * v[6]) - v[4] * (v[1] * v[10] - v[9] * v[2]) + v[8] * (v[1] * v[6] - v[5] * v[2]);
   return std::isfinite(det) && det != 0.0;
 }
 
@@ -223,8 +223,9 @@ Status checkNode(const Checker& c, size_t i, const std::vector<size_t>& targets)
   if (matrix && (n.contains("translation") || n.contains("rotation") || n.contains("scale")))
     return c.fail(p, "has both a matrix and translation/rotation/scale");
   if (matrix && !decomposable(*matrix))
-    return c.fail(Checker::at(p, "matrix"), "is not a translation, rotation and scale (its last row must be 0 0 0 1 "
-                                            "and it must be invertible)");
+    return c.fail(Checker::at(p, "matrix"),
+                  "is not a translation, rotation and scale (its last row must be 0 0 0 1 "
+                  "and it must be invertible)");
   if (const Json* r = Checker::find(n, "rotation")) {
     double length2 = 0.0;
     for (const Json& x : *r) length2 += x.get<double>() * x.get<double>();
@@ -238,8 +239,7 @@ Status checkNode(const Checker& c, size_t i, const std::vector<size_t>& targets)
     return c.fail(Checker::at(p, "skin"), "is set but mesh {} has no JOINTS_0", mesh->get<uint64_t>());
   if (const Json* w = Checker::find(n, "weights")) {
     const size_t want = mesh ? targets[mesh->get<size_t>()] : 0;
-    if (w->size() != want)
-      return c.fail(Checker::at(p, "weights"), "{} weights for {} morph targets", w->size(), want);
+    if (w->size() != want) return c.fail(Checker::at(p, "weights"), "{} weights for {} morph targets", w->size(), want);
   }
   if (const Json* ext = Checker::find(n, "extensions"))
     if (const Json* light = Checker::find(*ext, "KHR_lights_punctual")) {
@@ -273,7 +273,8 @@ Status checkMeshes(const Checker& c) {
     if (const Json* w = Checker::find(mesh, "weights")) {
       if (!w->is_array() || w->empty()) return c.fail(Checker::at(p, "weights"), "is not a non-empty array");
       RAYSTER_TRY(c.numbers(mesh, "weights", p, {w->size()}));
-      if (w->size() != first) return c.fail(Checker::at(p, "weights"), "{} weights for {} morph targets", w->size(), first);
+      if (w->size() != first)
+        return c.fail(Checker::at(p, "weights"), "{} weights for {} morph targets", w->size(), first);
     }
   }
   for (const auto& [view, accessors] : attributeViews)
@@ -364,7 +365,8 @@ Status checkAnimation(const Checker& c, size_t index, const std::vector<size_t>&
     RAYSTER_TRY(c.string(samplers[s], "interpolation", sp));  // an unknown one is only a warning
     const Json& input = c.element("accessors", samplers[s]["input"].get<size_t>());
     if (input["type"] != "SCALAR" || input["componentType"] != 5126)
-      return c.fail(Checker::at(sp, "input"), "accessor {} is not a float SCALAR", samplers[s]["input"].get<uint64_t>());
+      return c.fail(Checker::at(sp, "input"), "accessor {} is not a float SCALAR",
+                    samplers[s]["input"].get<uint64_t>());
     // Key times without min and max are an error to the validator, but absent bounds cannot
     // contradict the data (tests/unit/test_gltf_mutations.cpp lists the exception).
     const bool cubic = samplers[s].value("interpolation", "") == "CUBICSPLINE";

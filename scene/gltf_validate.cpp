@@ -23,8 +23,10 @@ void warnUnknownEnums(const tinygltf::Model& model, const std::string& file) {
     if (!filter(s.minFilter, true))
       log::warn("{}: samplers[{}].minFilter {} is not one of 9728, 9729, 9984-9987; filtering linearly with mipmaps",
                 file, i, s.minFilter);
-    if (!wrap(s.wrapS)) log::warn("{}: samplers[{}].wrapS {} is not 33071, 33648 or 10497; repeating", file, i, s.wrapS);
-    if (!wrap(s.wrapT)) log::warn("{}: samplers[{}].wrapT {} is not 33071, 33648 or 10497; repeating", file, i, s.wrapT);
+    if (!wrap(s.wrapS))
+      log::warn("{}: samplers[{}].wrapS {} is not 33071, 33648 or 10497; repeating", file, i, s.wrapS);
+    if (!wrap(s.wrapT))
+      log::warn("{}: samplers[{}].wrapT {} is not 33071, 33648 or 10497; repeating", file, i, s.wrapT);
   }
   for (size_t i = 0; i < model.cameras.size(); ++i)
     if (model.cameras[i].type != "perspective" && model.cameras[i].type != "orthographic")

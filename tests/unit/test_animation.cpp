@@ -324,7 +324,8 @@ TEST(Animation, RejectsWrongOutputCount) {
   TempDir dir;
   Doc d = quadDoc();
   addChannel(d, 0, "translation", "LINEAR", {0, 1, 2}, {0, 0, 0, 1, 0, 0});
-  expectRefused(loadBytes(dir, d.gltf()), "animations[0].channels[0]: sampler 0 output accessor 5 has 2 elements, 3 keys of translation need 3");
+  expectRefused(loadBytes(dir, d.gltf()),
+                "animations[0].channels[0]: sampler 0 output accessor 5 has 2 elements, 3 keys of translation need 3");
   // CUBICSPLINE needs in-tangent, value and out-tangent per key.
   Doc cubic = quadDoc();
   addChannel(cubic, 0, "translation", "CUBICSPLINE", {0, 1}, {0, 0, 0, 1, 0, 0});

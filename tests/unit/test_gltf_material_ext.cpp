@@ -69,7 +69,8 @@ TEST(GltfMaterialExt, SpecularFactorsAndTextures) {
 // reports an error, and the loader refuses the file naming the property.
 TEST(GltfMaterialExt, SpecularFactorsOutsideTheirRangeAreRefused) {
   for (const auto& [specular, path] : std::vector<std::pair<const char*, const char*>>{
-           {R"({"specularFactor": 3})", "materials[0].extensions.KHR_materials_specular.specularFactor: 3 is not [0, 1]"},
+           {R"({"specularFactor": 3})",
+            "materials[0].extensions.KHR_materials_specular.specularFactor: 3 is not [0, 1]"},
            {R"({"specularFactor": -1})", "KHR_materials_specular.specularFactor: -1 is not [0, 1]"},
            {R"({"specularColorFactor": [-1, 0.5, 1]})", "KHR_materials_specular.specularColorFactor[0]: -1"}}) {
     TempDir dir;

@@ -76,7 +76,8 @@ TEST(GltfReject, AccessorOutOfBufferBounds) {
   TempDir dir;
   Doc d = quadDoc();
   d.j["accessors"][0]["count"] = 5;
-  expectRefused(loadBytes(dir, d.gltf()), "accessors[0]: 5 elements of 12 bytes from byteOffset 0 run past buffer view 0");
+  expectRefused(loadBytes(dir, d.gltf()),
+                "accessors[0]: 5 elements of 12 bytes from byteOffset 0 run past buffer view 0");
   Doc e = quadDoc();
   e.j["bufferViews"][0]["byteLength"] = 4096;
   expectRefused(loadBytes(dir, e.gltf()), "bufferViews[0]: byteOffset 0 + byteLength 4096 runs past buffer 0");
@@ -102,7 +103,8 @@ TEST(GltfReject, IndexPastVertexCount) {
   TempDir dir;
   Doc d = quadDoc();
   primitive(d)["indices"] = d.accessor(d.view(std::vector<uint32_t>{0, 1, 4}), kUInt, 3, "SCALAR");
-  expectRefused(loadBytes(dir, d.gltf()), "meshes[0].primitives[0].indices: index 2 is 4, not below the vertex count 4");
+  expectRefused(loadBytes(dir, d.gltf()),
+                "meshes[0].primitives[0].indices: index 2 is 4, not below the vertex count 4");
 }
 
 TEST(GltfReject, SparseIndexPastCount) {
@@ -113,7 +115,8 @@ TEST(GltfReject, SparseIndexPastCount) {
   d.j["accessors"][0]["sparse"] = {{"count", 2},
                                    {"indices", {{"bufferView", idxView}, {"componentType", kUShort}}},
                                    {"values", {{"bufferView", valView}}}};
-  expectRefused(loadBytes(dir, d.gltf()), "accessors[0].sparse.indices: element 1 is 9, not below the accessor's count 4");
+  expectRefused(loadBytes(dir, d.gltf()),
+                "accessors[0].sparse.indices: element 1 is 9, not below the accessor's count 4");
 }
 
 TEST(GltfReject, NonFiniteNodeMatrix) {
@@ -247,7 +250,8 @@ void expectSpecRefusal(const std::function<void(Doc&)>& edit, const std::string&
 TEST(GltfSpec, AssetVersionMustBeTwo) {
   expectSpecRefusal([](Doc& d) { d.j["asset"]["version"] = "3.0"; }, "asset.version: '3.0' is not a glTF 2.x version");
   expectSpecRefusal([](Doc& d) { d.j["asset"]["version"] = "2"; }, "asset.version: '2' is not 'major.minor'");
-  expectSpecRefusal([](Doc& d) { d.j["asset"]["minVersion"] = "2.1"; }, "asset.minVersion: '2.1' is greater than version '2.0'");
+  expectSpecRefusal([](Doc& d) { d.j["asset"]["minVersion"] = "2.1"; },
+                    "asset.minVersion: '2.1' is greater than version '2.0'");
   // 2.1 is a 2.x version a 2.0 loader may read (the spec's forward compatibility).
   TempDir dir;
   Doc d = quadDoc();
@@ -287,8 +291,8 @@ TEST(GltfSpec, TextureImageAndSamplerIndicesExist) {
 // The schema allows any integer for filters and wraps (forward compatibility) and the validator only
 // warns about values glTF 2.0 does not define: the file loads, with the default for each.
 TEST(GltfSpec, SamplerValuesOutsideTheEnumsAreDefaults) {
-  for (const Json& sampler : {Json{{"magFilter", 9984}}, Json{{"minFilter", 1234}}, Json{{"wrapS", 10496}},
-                              Json{{"wrapT", 0}}}) {
+  for (const Json& sampler :
+       {Json{{"magFilter", 9984}}, Json{{"minFilter", 1234}}, Json{{"wrapS", 10496}}, Json{{"wrapT", 0}}}) {
     TempDir dir;
     Doc d = quadDoc();
     d.j["samplers"] = Json::array({sampler});
@@ -307,9 +311,21 @@ TEST(GltfSpec, CamerasHaveAPositiveFieldOfViewAndNearPlane) {
     d.j["cameras"] = Json::array({{{"type", "perspective"}, {"perspective", perspective}}});
     d.node(0)["camera"] = 0;
   };
-  expectSpecRefusal([&](Doc& d) { camera(d, {{"yfov", 0.0}, {"znear", 0.1}}); }, "cameras[0].perspective.yfov: 0 is not above 0");
-  expectSpecRefusal([&](Doc& d) { camera(d, {{"yfov", -0.5}, {"znear", 0.1}}); }, "cameras[0].perspective.yfov: -0.5 is not above 0");
-  expectSpecRefusal([&](Doc& d) { camera(d, {{"yfov", 0.7}, {"znear", 0.0}}); }, "cameras[0].perspective.znear: 0 is not above 0");
+  expectSpecRefusal(
+      [&](Doc& d) {
+        camera(d, {{"yfov", 0.0}, {"znear", 0.1}});
+      },
+      "cameras[0].perspective.yfov: 0 is not above 0");
+  expectSpecRefusal(
+      [&](Doc& d) {
+        camera(d, {{"yfov", -0.5}, {"znear", 0.1}});
+      },
+      "cameras[0].perspective.yfov: -0.5 is not above 0");
+  expectSpecRefusal(
+      [&](Doc& d) {
+        camera(d, {{"yfov", 0.7}, {"znear", 0.0}});
+      },
+      "cameras[0].perspective.znear: 0 is not above 0");
   expectSpecRefusal(
       [&](Doc& d) {
         camera(d, {{"yfov", 0.7}, {"znear", 1.0}, {"zfar", 0.5}});
@@ -328,7 +344,11 @@ TEST(GltfSpec, LightsHaveNonNegativeIntensityAndOrderedCones) {
     d.j["extensions"]["KHR_lights_punctual"]["lights"] = Json::array({l});
     d.node(0)["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
   };
-  expectSpecRefusal([&](Doc& d) { light(d, {{"type", "point"}, {"intensity", -3.0}}); }, "extensions.KHR_lights_punctual.lights[0].intensity: -3 is not at least 0");
+  expectSpecRefusal(
+      [&](Doc& d) {
+        light(d, {{"type", "point"}, {"intensity", -3.0}});
+      },
+      "extensions.KHR_lights_punctual.lights[0].intensity: -3 is not at least 0");
   expectSpecRefusal(
       [&](Doc& d) {
         light(d, {{"type", "spot"}, {"spot", {{"innerConeAngle", 0.6}, {"outerConeAngle", 0.4}}}});
@@ -339,7 +359,11 @@ TEST(GltfSpec, LightsHaveNonNegativeIntensityAndOrderedCones) {
         light(d, {{"type", "spot"}, {"spot", {{"outerConeAngle", 2.0}}}});
       },
       "lights[0].spot.outerConeAngle: 2 is not (0, 1.57");
-  expectSpecRefusal([&](Doc& d) { light(d, {{"type", "point"}, {"range", -1.0}}); }, "lights[0].range: -1 is not above 0");
+  expectSpecRefusal(
+      [&](Doc& d) {
+        light(d, {{"type", "point"}, {"range", -1.0}});
+      },
+      "lights[0].range: -1 is not above 0");
 }
 
 TEST(GltfSpec, PositionBoundsAreTheDatasExtremes) {
@@ -351,8 +375,11 @@ TEST(GltfSpec, PositionBoundsAreTheDatasExtremes) {
       },
       "accessors[0].max[0]: 0.5, but the largest value is 1");
   // Looser bounds too: the validator reports ACCESSOR_MIN_MISMATCH (min and max are the extremes).
-  expectSpecRefusal([](Doc& d) { d.j["accessors"][0]["min"] = {-1.0, 0.0, 0.0}; },
-                    "accessors[0].min[0]: -1, but the smallest value is 0");
+  expectSpecRefusal(
+      [](Doc& d) {
+        d.j["accessors"][0]["min"] = {-1.0, 0.0, 0.0};
+      },
+      "accessors[0].min[0]: -1, but the smallest value is 0");
   // Bounds written with more digits than a float holds compare as the float they round to.
   TempDir dir;
   Doc d = quadDoc();
