@@ -106,6 +106,41 @@ std::optional<Error> checkReadable(const fs::path& path) {
   return std::nullopt;
 }
 
+// Images larger than this are refused before decoding: a header can claim any size, and the
+// decoders allocate what it claims (16384 per side is the glTF and OBJ textures' limit too).
+constexpr int64_t kMaxReadSide = 16384;
+constexpr int64_t kMaxReadPixels = int64_t(1) << 28;
+
+std::optional<Error> checkDimensions(const fs::path& path, int64_t w, int64_t h) {
+  if (w > kMaxReadSide || h > kMaxReadSide || w * h > kMaxReadPixels)
+    return readError(path, fmt::format("{}x{} pixels, more than {} per side", w, h, kMaxReadSide));
+  return std::nullopt;
+}
+
+// The size a PNG, JPEG or HDR header claims, checked before stb allocates it.
+std::optional<Error> checkStbDimensions(const fs::path& path) {
+  int w = 0, h = 0, channels = 0;
+  if (!stbi_info(path.c_str(), &w, &h, &channels)) return std::nullopt;  // the decoder says why
+  return checkDimensions(path, w, h);
+}
+
+// The same for an EXR's data window.
+std::optional<Error> checkExrDimensions(const fs::path& path) {
+  EXRVersion version;
+  if (ParseEXRVersionFromFile(&version, path.c_str()) != TINYEXR_SUCCESS) return std::nullopt;
+  EXRHeader header;
+  InitEXRHeader(&header);
+  const char* err = nullptr;
+  std::optional<Error> result;
+  if (ParseEXRHeaderFromFile(&header, &version, path.c_str(), &err) == TINYEXR_SUCCESS) {
+    const EXRBox2i& d = header.data_window;
+    result = checkDimensions(path, int64_t(d.max_x) - d.min_x + 1, int64_t(d.max_y) - d.min_y + 1);
+    FreeEXRHeader(&header);
+  }
+  if (err) FreeEXRErrorMessage(err);
+  return result;
+}
+
 const std::array<float, 256>& srgbDecodeTable() {
   static const std::array<float, 256> table = [] {
     std::array<float, 256> t{};
@@ -147,6 +182,7 @@ FiniteCounts makeFinite(ImageF& image, float limit) {
 
 Result<ImageF> readHdr(const fs::path& path) {
   if (auto error = checkReadable(path)) return *error;
+  if (auto error = checkStbDimensions(path)) return *error;
   int w = 0, h = 0, channels = 0;
   float* data = stbi_loadf(path.c_str(), &w, &h, &channels, 4);
   if (!data) return readError(path, stbi_failure_reason() ? stbi_failure_reason() : "decode failed");
@@ -211,6 +247,7 @@ Status writeExr(const fs::path& path, const ImageF& image, ExrPixels pixels) {
 
 Result<Image8> readPng(const fs::path& path) {
   if (auto error = checkReadable(path)) return *error;
+  if (auto error = checkStbDimensions(path)) return *error;
   int w = 0, h = 0, channels = 0;
   uint8_t* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
   if (!data) return readError(path, stbi_failure_reason() ? stbi_failure_reason() : "decode failed");
@@ -222,6 +259,7 @@ Result<Image8> readPng(const fs::path& path) {
 
 Result<ImageF> readExr(const fs::path& path) {
   if (auto error = checkReadable(path)) return *error;
+  if (auto error = checkExrDimensions(path)) return *error;
   float* data = nullptr;
   int w = 0, h = 0;
   const char* err = nullptr;
