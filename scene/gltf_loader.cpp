@@ -53,6 +53,16 @@ unsigned glbLength(const std::vector<uint8_t>& bytes) {
   return length;
 }
 
+// The BIN chunk's length in a GLB that glbJsonChunk() accepted, -1 when there is none.
+int64_t glbBinLength(const std::vector<uint8_t>& bytes, size_t jsonLength) {
+  const size_t at = 20 + jsonLength;
+  uint32_t length = 0, type = 0;
+  if (at + 8 > glbLength(bytes)) return -1;
+  std::memcpy(&length, bytes.data() + at, 4);
+  std::memcpy(&type, bytes.data() + at + 4, 4);
+  return type == 0x004E4942u ? int64_t(length) : -1;
+}
+
 // Reads and parses the file; `images` learns which images a material shows and which were found.
 Result<tinygltf::Model> parse(const fs::path& path, const std::string& file, ImageDecodeState& images) {
   Result<std::vector<uint8_t>> bytes = readFile(path, file);
@@ -87,6 +97,7 @@ Result<tinygltf::Model> parse(const fs::path& path, const std::string& file, Ima
   if (!confined.violation.empty()) return bad(file, "{}", confined.violation);
   if (!ok) {
     if (!images.error.empty()) return bad(file, "{}", images.error);
+    if (binary) RAYSTER_TRY(explainGlbBuffer(file, json, glbBinLength(*bytes, json.size())));
     return bad(file, "invalid glTF: {}", oneLine(err.empty() ? std::string("tinygltf failed") : err));
   }
   if (!warn.empty()) log::debug("{}: tinygltf: {}", file, oneLine(warn));

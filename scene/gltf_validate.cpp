@@ -175,6 +175,20 @@ Status checkJsonTypes(const std::string& file, const nlohmann::json& root) {
   return checkSchema(file, root);
 }
 
+Status explainGlbBuffer(const std::string& file, std::string_view json, int64_t binLength) {
+  const Json root = Json::parse(json.begin(), json.end(), nullptr, false);
+  const auto buffers = root.is_object() ? root.find("buffers") : root.end();
+  if (!root.is_object() || buffers == root.end() || !buffers->is_array() || buffers->empty()) return okStatus();
+  const Json& b = (*buffers)[0];
+  if (!b.is_object() || b.contains("uri")) return okStatus();
+  if (binLength < 0) return bad(file, "buffers[0]: has no uri, and the GLB has no BIN chunk to hold its bytes");
+  const auto length = b.find("byteLength");
+  if (length != b.end() && length->is_number_unsigned() && length->get<uint64_t>() > uint64_t(binLength))
+    return bad(file, "buffers[0].byteLength: {}, but the GLB BIN chunk holds {} bytes", length->get<uint64_t>(),
+               binLength);
+  return okStatus();
+}
+
 Status validateModel(const tinygltf::Model& model, const std::string& file) {
   // The schema and the links were checked on the JSON (checkSchema); what is left is in the data.
   RAYSTER_TRY(checkAccessorData(model, file));

@@ -26,7 +26,30 @@ struct Mutation {
   const char* refusal;
   // An edit of the written JSON, for what Doc::gltf() writes itself (the buffers).
   std::function<void(Json&)> written = {};
+  // Written as GLB: the JSON (after `written`) and the BIN chunk, which `bin` may edit.
+  bool glb = false;
+  std::function<void(std::vector<uint8_t>&)> bin = {};
 };
+
+// A GLB of `json` and `bin` (no BIN chunk when empty), chunks padded as the format asks.
+std::string glbBytes(const Json& json, std::vector<uint8_t> bin) {
+  std::string text = json.dump();
+  while (text.size() % 4) text += ' ';
+  while (bin.size() % 4) bin.push_back(0);
+  std::string out = "glTF";
+  auto u32 = [&](uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
+  u32(2);
+  u32(uint32_t(12 + 8 + text.size() + (bin.empty() ? 0 : 8 + bin.size())));
+  u32(uint32_t(text.size()));
+  u32(0x4E4F534A);
+  out += text;
+  if (!bin.empty()) {
+    u32(uint32_t(bin.size()));
+    u32(0x004E4942);
+    out.append(reinterpret_cast<const char*>(bin.data()), bin.size());
+  }
+  return out;
+}
 
 // Known, justified differences, by mutation name.
 const std::map<std::string, std::string> kExceptions = {
@@ -197,6 +220,14 @@ std::vector<Mutation> mutations() {
        }},
       {"data URI shorter than byteLength", [](Doc&) {}, "buffers[0].byteLength",
        [](Json& j) { j["buffers"][0]["byteLength"] = j["buffers"][0]["byteLength"].get<int>() + 4; }},
+      {"a GLB", [](Doc&) {}, nullptr, {}, true},
+      {"a GLB without its BIN chunk", [](Doc&) {}, "buffers[0]", {}, true, [](std::vector<uint8_t>& b) { b.clear(); }},
+      {"a GLB BIN chunk shorter than byteLength",
+       [](Doc&) {},
+       "buffers[0].byteLength",
+       {},
+       true,
+       [](std::vector<uint8_t>& b) { b.resize(b.size() - 16); }},
       {"gltf-buffer data URI", [](Doc&) {}, nullptr,
        [](Json& j) {
          std::string uri = j["buffers"][0]["uri"];
@@ -923,12 +954,16 @@ TEST(GltfMutations, RaysterRefusesExactlyWhatTheValidatorReports) {
     Doc d = boundedQuad();
     list[i].edit(d);
     std::string json = d.gltf();
-    if (list[i].written) {
-      Json j = Json::parse(json);
-      list[i].written(j);
-      json = j.dump();
+    Json j = Json::parse(json);
+    if (list[i].written) list[i].written(j);
+    if (list[i].glb) {
+      j["buffers"][0].erase("uri");
+      std::vector<uint8_t> bin = d.bin;
+      if (list[i].bin) list[i].bin(bin);
+      files.push_back(dir.write(fmt::format("m{:03}.glb", i), glbBytes(j, bin)).string());
+      continue;
     }
-    files.push_back(dir.write(fmt::format("m{:03}.gltf", i), json).string());
+    files.push_back(dir.write(fmt::format("m{:03}.gltf", i), j.dump()).string());
   }
   const std::map<std::string, Json> reports = runValidator(files);
   ASSERT_EQ(reports.size(), files.size()) << "the validator reported on every file";
