@@ -194,14 +194,23 @@ Status hierarchy(const Checker& c, std::vector<int64_t>& parent) {
   return okStatus();
 }
 
-// A matrix glTF can animate and decompose: affine (last row 0 0 0 1) and invertible.
+// A matrix glTF can decompose into translation, rotation and scale: affine (last row exactly
+// 0 0 0 1, as the validator wants it), invertible, and without shear (its columns orthogonal; the
+// validator accepts a shear of 1e-4 and refuses 3e-4, rounding is far below either).
 bool decomposable(const Json& m) {
   double v[16];
   for (int i = 0; i < 16; ++i) v[i] = m[size_t(i)].get<double>();
   if (v[3] != 0.0 || v[7] != 0.0 || v[11] != 0.0 || v[15] != 1.0) return false;
   const double det =
       v[0] * (v[5] * v[10] - v[9] * v[6]) - v[4] * (v[1] * v[10] - v[9] * v[2]) + v[8] * (v[1] * v[6] - v[5] * v[2]);
-  return std::isfinite(det) && det != 0.0;
+  if (!std::isfinite(det) || det == 0.0) return false;
+  auto dot = [&](int a, int b) {
+    return v[a * 4] * v[b * 4] + v[a * 4 + 1] * v[b * 4 + 1] + v[a * 4 + 2] * v[b * 4 + 2];
+  };
+  for (int a = 0; a < 3; ++a)
+    for (int b = a + 1; b < 3; ++b)
+      if (std::abs(dot(a, b)) > 2e-4 * std::sqrt(dot(a, a) * dot(b, b))) return false;
+  return true;
 }
 
 Status checkNode(const Checker& c, size_t i, const std::vector<size_t>& targets) {
