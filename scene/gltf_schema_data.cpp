@@ -181,6 +181,33 @@ Status checkKeyTimes(const tinygltf::Model& model, size_t anim, size_t s, const 
   return status;
 }
 
+// Rotation keys are unit quaternions (the validator's tolerance, as for node rotations); for
+// CUBICSPLINE only the values, not the tangents.
+Status checkRotationKeys(const tinygltf::Model& model, size_t anim, size_t ch, const std::vector<uint32_t>& sparse,
+                         const std::string& file) {
+  const tinygltf::AnimationChannel& channel = model.animations[anim].channels[ch];
+  const std::vector<tinygltf::AnimationSampler>& samplers = model.animations[anim].samplers;
+  if (channel.target_path != "rotation" || channel.sampler < 0 || size_t(channel.sampler) >= samplers.size())
+    return okStatus();
+  const tinygltf::AnimationSampler& sampler = samplers[size_t(channel.sampler)];
+  if (sampler.output < 0 || size_t(sampler.output) >= model.accessors.size()) return okStatus();
+  const tinygltf::Accessor& a = model.accessors[size_t(sampler.output)];
+  const AccessorData data(model, a);
+  if (!data.available() || data.components() != 4 || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+    return okStatus();
+  const bool cubic = sampler.interpolation == "CUBICSPLINE";
+  Status status = okStatus();
+  data.forEach(sparse, [&](size_t i, const double* v) {
+    if (cubic && i % 3 != 1) return true;
+    const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3]);
+    if (std::abs(1.0 - length) > 0.00769)
+      status = bad(file, "animations[{}].samplers[{}].output: rotation key {} has length {}, not a unit quaternion",
+                   anim, channel.sampler, cubic ? i / 3 : i, length);
+    return bool(status);
+  });
+  return status;
+}
+
 Status checkVertexIndices(const tinygltf::Model& model, size_t m, size_t p, const std::string& file,
                           const std::vector<std::vector<uint32_t>>& sparse) {
   const tinygltf::Primitive& prim = model.meshes[m].primitives[p];
@@ -223,6 +250,14 @@ Status checkAccessorData(const tinygltf::Model& model, const std::string& file) 
       const int input = model.animations[a].samplers[s].input;
       if (input >= 0 && size_t(input) < sparse.size())
         RAYSTER_TRY(checkKeyTimes(model, a, s, sparse[size_t(input)], file));
+    }
+  for (size_t a = 0; a < model.animations.size(); ++a)
+    for (size_t c = 0; c < model.animations[a].channels.size(); ++c) {
+      const int sampler = model.animations[a].channels[c].sampler;
+      if (sampler < 0 || size_t(sampler) >= model.animations[a].samplers.size()) continue;
+      const int output = model.animations[a].samplers[size_t(sampler)].output;
+      if (output >= 0 && size_t(output) < sparse.size())
+        RAYSTER_TRY(checkRotationKeys(model, a, c, sparse[size_t(output)], file));
     }
   for (size_t m = 0; m < model.meshes.size(); ++m)
     for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p)

@@ -401,6 +401,33 @@ std::vector<Mutation> mutations() {
        "meshes[0].primitives[0].targets[0].POSITION"},
       {"two attributes in one bufferView without byteStride", [](Doc& d) { d.j["accessors"][2]["bufferView"] = 1; },
        "bufferViews[1]"},
+      {"two meshes' positions in one bufferView without byteStride",
+       [](Doc& d) {
+         d.j["accessors"].push_back({{"bufferView", 0},
+                                     {"byteOffset", 12},
+                                     {"componentType", kFloat},
+                                     {"count", 3},
+                                     {"type", "VEC3"},
+                                     {"min", {0.0, 0.0, 0.0}},
+                                     {"max", {1.0, 1.0, 0.0}}});
+         d.j["meshes"].push_back({{"primitives", Json::array({{{"attributes", {{"POSITION", 4}}}}})}});
+         addNode(d, {{"mesh", 1}});
+       },
+       "bufferViews[0]"},
+      {"two meshes' positions in one bufferView with byteStride",
+       [](Doc& d) {
+         d.j["bufferViews"][0]["byteStride"] = 12;
+         d.j["accessors"].push_back({{"bufferView", 0},
+                                     {"byteOffset", 12},
+                                     {"componentType", kFloat},
+                                     {"count", 3},
+                                     {"type", "VEC3"},
+                                     {"min", {0.0, 0.0, 0.0}},
+                                     {"max", {1.0, 1.0, 0.0}}});
+         d.j["meshes"].push_back({{"primitives", Json::array({{{"attributes", {{"POSITION", 4}}}}})}});
+         addNode(d, {{"mesh", 1}});
+       },
+       nullptr},
       {"a texture reading a missing TEXCOORD_1",
        [](Doc& d) {
          material(d, {{"emissiveTexture", {{"index", 0}, {"texCoord", 1}}}});
@@ -938,6 +965,20 @@ std::vector<Mutation> mutations() {
          animate(d)["samplers"][0]["input"] = times(d, {-1, 1});
        },
        "animations[0].samplers[0].input"},
+      {"a rotation key of length 0.9",
+       [](Doc& d) {
+         Json& a = animate(d);
+         a["samplers"][0]["output"] = d.floats({0, 0, 0, 1, 0, 0, 0, 0.9f}, "VEC4", 4);
+         a["channels"][0]["target"]["path"] = "rotation";
+       },
+       "animations[0].samplers[0].output"},
+      {"a rotation key within the tolerance",
+       [](Doc& d) {
+         Json& a = animate(d);
+         a["samplers"][0]["output"] = d.floats({0, 0, 0, 1, 0, 0, 0, 0.995f}, "VEC4", 4);
+         a["channels"][0]["target"]["path"] = "rotation";
+       },
+       nullptr},
       {"CUBICSPLINE with one key",
        [](Doc& d) {
          Json& a = animate(d);
