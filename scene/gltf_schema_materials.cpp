@@ -79,9 +79,9 @@ Status checkMaterialExtensions(const Checker& c, const Json& m, const std::strin
     const double v = c.numberOr(*ior, "ior", 1.5);
     if (v != 0.0 && v < 1.0) return c.fail(Checker::at(ip, "ior"), "{} is neither 0 nor at least 1", v);
   }
-  // Every texture an extension names: its index exists, texCoord >= 0.
+  // Every texture a KHR_materials_* extension names: its index exists, texCoord >= 0.
   for (auto it = ext->begin(); it != ext->end(); ++it) {
-    if (!it.value().is_object()) continue;
+    if (!it.value().is_object() || it.key().rfind("KHR_materials_", 0) != 0) continue;
     const std::string xp = Checker::at(ep, it.key().c_str());
     for (auto t = it.value().begin(); t != it.value().end(); ++t) {
       const std::string& key = t.key();

@@ -37,12 +37,15 @@ bool typeAllowed(const std::string& base, const std::string& type) {
   return true;
 }
 
-// Every textureInfo in a material (core and extensions): objects named "...Texture" with an index.
-void texCoordsOf(const Json& o, const std::string& path, std::vector<std::pair<std::string, int64_t>>& out) {
+// Every textureInfo in a material (core and the KHR_materials_* extensions, which the validator
+// knows; others may mean something else by a "texCoord"): objects named "...Texture" with an index.
+void texCoordsOf(const Json& o, const std::string& path, std::vector<std::pair<std::string, int64_t>>& out,
+                 bool inExtensions = false) {
   if (!o.is_object()) return;
   for (auto it = o.begin(); it != o.end(); ++it) {
     const std::string& key = it.key();
     if (key == "extras" || !it.value().is_object()) continue;
+    if (inExtensions && key.rfind("KHR_materials_", 0) != 0) continue;
     const std::string p = Checker::at(path, key.c_str());
     const bool texture = key.size() > 7 && key.compare(key.size() - 7, 7, "Texture") == 0;
     if (texture && it.value().contains("index")) {
@@ -52,7 +55,7 @@ void texCoordsOf(const Json& o, const std::string& path, std::vector<std::pair<s
         texCoord = t->value("texCoord", texCoord);
       out.emplace_back(p, texCoord);
     } else {
-      texCoordsOf(it.value(), p, out);
+      texCoordsOf(it.value(), p, out, key == "extensions");
     }
   }
 }

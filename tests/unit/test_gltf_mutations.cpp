@@ -428,6 +428,11 @@ std::vector<Mutation> mutations() {
          addNode(d, {{"mesh", 1}});
        },
        nullptr},
+      {"an unknown extension's texture reading TEXCOORD_1",
+       [](Doc& d) {
+         ext(d, "EXT_something", {{"glowTexture", {{"index", 0}, {"texCoord", 1}}}});
+       },
+       nullptr},
       {"a texture reading a missing TEXCOORD_1",
        [](Doc& d) {
          material(d, {{"emissiveTexture", {{"index", 0}, {"texCoord", 1}}}});
