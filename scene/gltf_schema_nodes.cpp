@@ -125,6 +125,17 @@ Status checkPrimitive(const Checker& c, const Json& prim, const std::string& p, 
   }
   // Texture coordinates the material's textures read must be there.
   if (const Json* material = Checker::find(prim, "material")) {
+    // A clearcoat normal map needs a tangent space: TANGENT, or a normal map to generate one from
+    // (MESH_PRIMITIVE_NO_TANGENT_SPACE).
+    const Json& m = c.element("materials", material->get<size_t>());
+    const Json* ext = Checker::find(m, "extensions");
+    const Json* clearcoat = ext ? Checker::find(*ext, "KHR_materials_clearcoat") : nullptr;
+    const bool needsTangents = clearcoat && clearcoat->contains("clearcoatNormalTexture");
+    if (needsTangents && !attributes->contains("TANGENT") && !m.contains("normalTexture"))
+      return c.fail(Checker::at(p, "material"),
+                    "material {} needs a tangent space for its clearcoat normals, but the primitive has no "
+                    "TANGENT and the material no normal map",
+                    material->get<uint64_t>());
     std::vector<std::pair<std::string, int64_t>> uses;
     texCoordsOf(c.element("materials", material->get<size_t>()),
                 fmt::format("materials[{}]", material->get<uint64_t>()), uses);

@@ -14,7 +14,7 @@ async function validate(file) {
   const dir = path.dirname(file);
   const report = await validator.validateBytes(bytes, {
     uri: path.basename(file),
-    maxIssues: 10,
+    maxIssues: 1000,
     externalResourceFunction: (uri) =>
       new Promise((resolve, reject) => {
         const p = path.resolve(dir, decodeURIComponent(uri));
