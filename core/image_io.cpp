@@ -7,10 +7,12 @@
 #include <cctype>
 #include <cerrno>
 #include <cfloat>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -106,6 +108,52 @@ std::optional<Error> checkReadable(const fs::path& path) {
   return std::nullopt;
 }
 
+// Reads the whole file (stb then decodes from memory, after stbDecodeHazard()).
+std::optional<std::vector<uint8_t>> readBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// Images larger than this are refused before decoding: a header can claim any size, and the
+// decoders allocate what it claims (16384 per side is the glTF and OBJ textures' limit too).
+constexpr int64_t kMaxReadSide = 16384;
+constexpr int64_t kMaxReadPixels = int64_t(1) << 28;
+
+std::optional<Error> checkDimensions(const fs::path& path, int64_t w, int64_t h) {
+  if (w > kMaxReadSide || h > kMaxReadSide || w * h > kMaxReadPixels)
+    return readError(path, fmt::format("{}x{} pixels, more than {} per side", w, h, kMaxReadSide));
+  return std::nullopt;
+}
+
+// The size a PNG, JPEG or HDR header claims, checked before stb allocates it, and the bytes stb
+// must not see.
+std::optional<Error> checkStbInput(const fs::path& path, const std::vector<uint8_t>& bytes) {
+  if (const std::string hazard = stbDecodeHazard(bytes.data(), bytes.size()); !hazard.empty())
+    return readError(path, hazard);
+  int w = 0, h = 0, channels = 0;
+  if (bytes.size() > size_t(INT_MAX) || !stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels))
+    return std::nullopt;  // the decoder says why
+  return checkDimensions(path, w, h);
+}
+
+// The same for an EXR's data window.
+std::optional<Error> checkExrDimensions(const fs::path& path) {
+  EXRVersion version;
+  if (ParseEXRVersionFromFile(&version, path.c_str()) != TINYEXR_SUCCESS) return std::nullopt;
+  EXRHeader header;
+  InitEXRHeader(&header);
+  const char* err = nullptr;
+  std::optional<Error> result;
+  if (ParseEXRHeaderFromFile(&header, &version, path.c_str(), &err) == TINYEXR_SUCCESS) {
+    const EXRBox2i& d = header.data_window;
+    result = checkDimensions(path, int64_t(d.max_x) - d.min_x + 1, int64_t(d.max_y) - d.min_y + 1);
+  }
+  FreeEXRHeader(&header);  // a header that failed to parse may hold what it read so far
+  if (err) FreeEXRErrorMessage(err);
+  return result;
+}
+
 const std::array<float, 256>& srgbDecodeTable() {
   static const std::array<float, 256> table = [] {
     std::array<float, 256> t{};
@@ -147,8 +195,11 @@ FiniteCounts makeFinite(ImageF& image, float limit) {
 
 Result<ImageF> readHdr(const fs::path& path) {
   if (auto error = checkReadable(path)) return *error;
+  const std::optional<std::vector<uint8_t>> bytes = readBytes(path);
+  if (!bytes) return readError(path, "cannot open");
+  if (auto error = checkStbInput(path, *bytes)) return *error;
   int w = 0, h = 0, channels = 0;
-  float* data = stbi_loadf(path.c_str(), &w, &h, &channels, 4);
+  float* data = stbi_loadf_from_memory(bytes->data(), int(bytes->size()), &w, &h, &channels, 4);
   if (!data) return readError(path, stbi_failure_reason() ? stbi_failure_reason() : "decode failed");
   ImageF image = ImageF::make(w, h);
   std::copy(data, data + image.rgba.size(), image.rgba.begin());
@@ -168,6 +219,40 @@ Status writeHdr(const fs::path& path, const ImageF& image) {
 }
 
 }  // namespace
+
+std::string stbDecodeHazard(const uint8_t* d, size_t n) {
+  if (n < 4 || d[0] != 0xFF || d[1] != 0xD8) return {};  // only JPEG has the problem
+  // Walk the markers; inside entropy-coded data only 0xFF 0x00 (a stuffed byte), RSTn and fill
+  // bytes follow an 0xFF, so a byte-wise scan for the next marker is enough.
+  size_t i = 2;
+  while (i + 4 <= n) {
+    if (d[i] != 0xFF || d[i + 1] == 0xFF) {
+      ++i;
+      continue;
+    }
+    const uint8_t marker = d[i + 1];
+    if (marker == 0x00 || marker == 0x01 || marker == 0xD8 || (marker >= 0xD0 && marker <= 0xD7)) {
+      i += 2;
+      continue;
+    }
+    if (marker == 0xD9) break;  // end of image
+    const size_t length = size_t(d[i + 2]) << 8 | d[i + 3];
+    if (marker == 0xC4) {
+      // DHT: tables of a class/id byte, 16 code counts, then the symbols, read the way stb reads
+      // them: while the segment's length is not used up, even past its end.
+      int64_t remaining = int64_t(length) - 2;
+      for (size_t p = i + 4; remaining > 0;) {
+        size_t codes = 0;
+        for (size_t k = 1; k <= 16; ++k) codes += p + k < n ? d[p + k] : 0;
+        if (codes > 256) return fmt::format("a JPEG Huffman table declares {} codes (at most 256)", codes);
+        p += 17 + codes;
+        remaining -= int64_t(17 + codes);
+      }
+    }
+    i += 2 + std::max<size_t>(length, 2);
+  }
+  return {};
+}
 
 float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
@@ -211,8 +296,11 @@ Status writeExr(const fs::path& path, const ImageF& image, ExrPixels pixels) {
 
 Result<Image8> readPng(const fs::path& path) {
   if (auto error = checkReadable(path)) return *error;
+  const std::optional<std::vector<uint8_t>> bytes = readBytes(path);
+  if (!bytes) return readError(path, "cannot open");
+  if (auto error = checkStbInput(path, *bytes)) return *error;
   int w = 0, h = 0, channels = 0;
-  uint8_t* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
+  uint8_t* data = stbi_load_from_memory(bytes->data(), int(bytes->size()), &w, &h, &channels, 4);
   if (!data) return readError(path, stbi_failure_reason() ? stbi_failure_reason() : "decode failed");
   Image8 image = Image8::make(w, h);
   std::copy(data, data + image.rgba.size(), image.rgba.begin());
@@ -222,6 +310,7 @@ Result<Image8> readPng(const fs::path& path) {
 
 Result<ImageF> readExr(const fs::path& path) {
   if (auto error = checkReadable(path)) return *error;
+  if (auto error = checkExrDimensions(path)) return *error;
   float* data = nullptr;
   int w = 0, h = 0;
   const char* err = nullptr;

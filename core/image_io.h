@@ -30,6 +30,11 @@ Status writeExr(const std::filesystem::path& path, const ImageF& image, ExrPixel
 // Any file (JSON reports): same atomic temp-and-rename and failure message as the images.
 Status writeFileAtomically(const std::filesystem::path& path, const std::string& contents);
 
+// What in an encoded image would make Debian's stb_image 2.27 misbehave, or an empty string: a JPEG
+// Huffman table of more than 256 codes overflows its fixed tables (found by fuzz/fuzz_image.cpp).
+// Every stb decode of untrusted bytes asks this first.
+std::string stbDecodeHazard(const uint8_t* data, size_t size);
+
 // Failures: ExitCode::BadInput, naming the file and the cause.
 Result<Image8> readPng(const std::filesystem::path& path);
 Result<ImageF> readExr(const std::filesystem::path& path);

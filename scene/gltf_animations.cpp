@@ -24,7 +24,9 @@ Result<AnimationChannel::Interp> interpolation(const std::string& name, const st
   if (name.empty() || name == "LINEAR") return AnimationChannel::Linear;
   if (name == "STEP") return AnimationChannel::Step;
   if (name == "CUBICSPLINE") return AnimationChannel::CubicSpline;
-  return bad(file, "{} has unknown interpolation '{}'", where, name);
+  // The schema allows any string (the validator only warns); LINEAR is the default glTF gives.
+  log::warn("{}: {} has interpolation '{}', which glTF 2.0 does not define; interpolated linearly", file, where, name);
+  return AnimationChannel::Linear;
 }
 
 Result<std::vector<float>> keyTimes(const tinygltf::Model& model, int accessor, const std::string& where,
@@ -161,7 +163,8 @@ Status convertAnimations(const tinygltf::Model& model, const std::string& file, 
         warnedPath = true;
         continue;
       }
-      if (channel.target_node < 0 || size_t(channel.target_node) >= model.nodes.size())
+      if (channel.target_node < 0) continue;  // no node: the channel animates nothing (glTF 2.0 §5.5)
+      if (size_t(channel.target_node) >= model.nodes.size())
         return bad(file, "{} targets node {}, which does not exist", where, channel.target_node);
       size_t targets = 0;  // morph targets of the node's mesh, for a weights channel
       if (path == AnimationChannel::Weights) {

@@ -129,6 +129,9 @@ Result<Mesh> convertMesh(MeshBuilder& builder, int meshIndex);
 // The JSON types of the core properties (on the raw JSON: tinygltf takes a wrong type for absent),
 // then the model's ranges and references.
 Status checkJsonTypes(const std::string& file, const nlohmann::json& root);
+// Why buffer 0 of a GLB does not get its bytes from the BIN chunk (`binLength`, -1 for none), for a
+// file tinygltf refused; okStatus() when that is not the reason.
+Status explainGlbBuffer(const std::string& file, std::string_view json, int64_t binLength);
 Status validateModel(const tinygltf::Model& model, const std::string& file);
 
 // ---- gltf_materials.cpp: images, samplers, textures and materials, in glTF order ----

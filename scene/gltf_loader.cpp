@@ -53,6 +53,16 @@ unsigned glbLength(const std::vector<uint8_t>& bytes) {
   return length;
 }
 
+// The BIN chunk's length in a GLB that glbJsonChunk() accepted, -1 when there is none.
+int64_t glbBinLength(const std::vector<uint8_t>& bytes, size_t jsonLength) {
+  const size_t at = 20 + jsonLength;
+  uint32_t length = 0, type = 0;
+  if (at + 8 > glbLength(bytes)) return -1;
+  std::memcpy(&length, bytes.data() + at, 4);
+  std::memcpy(&type, bytes.data() + at + 4, 4);
+  return type == 0x004E4942u ? int64_t(length) : -1;
+}
+
 // Reads and parses the file; `images` learns which images a material shows and which were found.
 Result<tinygltf::Model> parse(const fs::path& path, const std::string& file, ImageDecodeState& images,
                               std::vector<FallbackBuffer>& fallbacks, std::vector<DetachedIndices>& detached) {
@@ -99,6 +109,7 @@ Result<tinygltf::Model> parse(const fs::path& path, const std::string& file, Ima
   if (!confined.violation.empty()) return bad(file, "{}", confined.violation);
   if (!ok) {
     if (!images.error.empty()) return bad(file, "{}", images.error);
+    if (binary) RAYSTER_TRY(explainGlbBuffer(file, json, glbBinLength(*bytes, json.size())));
     return bad(file, "invalid glTF: {}", oneLine(err.empty() ? std::string("tinygltf failed") : err));
   }
   if (!warn.empty()) log::debug("{}: tinygltf: {}", file, oneLine(warn));
@@ -177,8 +188,13 @@ Status addLight(const tinygltf::Model& model, const tinygltf::Node& node, int li
     light.type = LightType::Spot;
   else if (src.type == "directional")
     light.type = LightType::Directional;
-  else
-    return bad(file, "light '{}' has unknown type '{}'", light.name, src.type);
+  else {
+    // The schema allows any string here (the validator only warns): a type glTF 2.0 does not
+    // define is not drawn.
+    log::warn("{}: light '{}' has type '{}', which KHR_lights_punctual does not define; not drawn", file, light.name,
+              src.type);
+    return okStatus();
+  }
   if (src.color.size() == 3) light.color = glm::vec3(src.color[0], src.color[1], src.color[2]);
   light.intensity = float(src.intensity);
   light.position = glm::vec3(world[3]);
@@ -355,8 +371,9 @@ Status convertNodes(const tinygltf::Model& model, const std::string& file, Scene
       scene.cameras.back().node = self;
     }
     if (int light = nodeLight(node); light != -1) {
+      const size_t lights = scene.lights.size();
       RAYSTER_TRY(addLight(model, node, light, world, scene, file));
-      scene.lights.back().node = self;
+      if (scene.lights.size() > lights) scene.lights.back().node = self;
     }
     for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.emplace_back(*child, self);
   }
@@ -374,10 +391,12 @@ Result<Scene> loadGltf(const fs::path& path) {
   Result<tinygltf::Model> model = gltf::parse(path, file, images, fallbacks, detached);
   if (!model) return model.error();
   RAYSTER_TRY(gltf::reattachIndices(*model, file, detached));
-  // Compressed geometry becomes plain buffer data first, so everything after reads it as such.
+  // The file as written is checked as the validator checks it (compressed data is the decoders'
+  // to check: Draco dequantizes, so decoded extremes may differ from min/max by a step); then
+  // compressed geometry becomes plain buffer data, so everything after reads it as such.
+  RAYSTER_TRY(gltf::validateModel(*model, file));
   RAYSTER_TRY(gltf::decodeMeshopt(*model, file, fallbacks));
   RAYSTER_TRY(gltf::decodeDraco(*model, file));
-  RAYSTER_TRY(gltf::validateModel(*model, file));
   Scene scene;
   scene.name = path.stem().string();
   RAYSTER_TRY(gltf::convertMaterials(*model, file, images, scene));

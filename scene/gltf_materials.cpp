@@ -4,6 +4,7 @@
 
 #include <stb/stb_image.h>  // declarations only: the implementation lives in core/image_io.cpp
 
+#include "core/image_io.h"
 #include "core/ktx2.h"
 #include "core/log.h"
 #include "scene/gltf_internal.h"
@@ -240,6 +241,8 @@ bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::
       uint64_t(width) * uint64_t(height) > kMaxImagePixels)
     return fail(fmt::format("image {} is {}x{}, larger than Rayster accepts ({} per side)", imageIndex, width, height,
                             kMaxImageSide));
+  if (const std::string hazard = stbDecodeHazard(bytes, size_t(size)); !hazard.empty())
+    return fail(fmt::format("image {} cannot be decoded ({})", imageIndex, hazard));
   stbi_uc* pixels = stbi_load_from_memory(bytes, size, &width, &height, &channels, 4);
   if (!pixels)
     return fail(fmt::format("image {} cannot be decoded ({})", imageIndex,

@@ -296,9 +296,13 @@ Result<Primitive> convertPrimitive(MeshBuilder& builder, const tinygltf::Mesh& m
     for (size_t i = 0; i < vertexCount; ++i) prim.indices[i] = uint32_t(i);
   }
   if (strip || fan) prim.indices = triangulate(prim.indices, strip);
-  if (prim.indices.size() % 3 != 0)
-    return bad(file, "{} primitive {}: {} indices is not a whole number of triangles", label, primIndex,
-               prim.indices.size());
+  // A count that is no multiple of 3 is only a warning in the glTF-Validator
+  // (MESH_PRIMITIVE_INCOMPATIBLE_MODE): the whole triangles are drawn, the rest left out.
+  if (prim.indices.size() % 3 != 0) {
+    log::warn("{}: {} primitive {}: {} indices is not a whole number of triangles; the last {} left out", file, label,
+              primIndex, prim.indices.size(), prim.indices.size() % 3);
+    prim.indices.resize(prim.indices.size() / 3 * 3);
+  }
   for (size_t i = 0; i < vertexCount; ++i)
     if (!std::isfinite(prim.positions[i].x) || !std::isfinite(prim.positions[i].y) ||
         !std::isfinite(prim.positions[i].z))

@@ -1,139 +1,42 @@
 // What the glTF 2.0 specification forbids and tinygltf lets through: the loader refuses it with one
 // line naming the property (as the Khronos glTF-Validator reports it as an error), rather than
-// drawing something the file does not say. Runs on the parsed model before anything is converted.
-#include <cmath>
-#include <numbers>
+// drawing something the file does not say. The JSON types here, then the schema and its links
+// (gltf_schema*.cpp) on the raw JSON; after parsing, the checks on the data.
 
 #include <nlohmann/json.hpp>
 
-#include "scene/gltf_internal.h"
+#include "core/log.h"
+#include "scene/gltf_schema.h"
 
 namespace rayster::scene::gltf {
 namespace {
 
-bool inRange(int index, size_t count) { return index >= 0 && size_t(index) < count; }
-
-Status checkAsset(const tinygltf::Asset& asset, const std::string& file) {
-  // asset.version is "major.minor"; a loader for 2.x must not guess at another major version.
-  auto major = [](const std::string& v) -> int {
-    const size_t dot = v.find('.');
-    if (dot == std::string::npos || dot == 0 || dot + 1 >= v.size()) return -1;
-    for (size_t i = 0; i < v.size(); ++i)
-      if (i != dot && (v[i] < '0' || v[i] > '9')) return -1;
-    return std::stoi(v.substr(0, std::min<size_t>(dot, 6)));
-  };
-  if (major(asset.version) != 2)
-    return bad(file, "asset.version '{}' is not a glTF 2.x version (this loader reads glTF 2.0)", asset.version);
-  if (!asset.minVersion.empty()) {
-    const int m = major(asset.minVersion);
-    if (m != 2 || asset.minVersion != "2.0")
-      return bad(file, "asset.minVersion '{}' asks for more than glTF 2.0", asset.minVersion);
-  }
-  return okStatus();
-}
-
-Status checkNodes(const tinygltf::Model& model, const std::string& file) {
-  for (size_t i = 0; i < model.nodes.size(); ++i) {
-    const tinygltf::Node& n = model.nodes[i];
-    if (!n.matrix.empty() && n.matrix.size() != 16)
-      return bad(file, "nodes[{}].matrix has {} numbers, not 16", i, n.matrix.size());
-    if (!n.translation.empty() && n.translation.size() != 3)
-      return bad(file, "nodes[{}].translation has {} numbers, not 3", i, n.translation.size());
-    if (!n.rotation.empty() && n.rotation.size() != 4)
-      return bad(file, "nodes[{}].rotation has {} numbers, not 4", i, n.rotation.size());
-    if (!n.scale.empty() && n.scale.size() != 3)
-      return bad(file, "nodes[{}].scale has {} numbers, not 3", i, n.scale.size());
-    if (n.mesh != -1 && !inRange(n.mesh, model.meshes.size()))
-      return bad(file, "nodes[{}].mesh {} does not exist", i, n.mesh);
-    if (n.camera != -1 && !inRange(n.camera, model.cameras.size()))
-      return bad(file, "nodes[{}].camera {} does not exist", i, n.camera);
-  }
-  return okStatus();
-}
-
-Status checkTextures(const tinygltf::Model& model, const std::string& file) {
-  for (size_t i = 0; i < model.textures.size(); ++i) {
-    const tinygltf::Texture& t = model.textures[i];
-    // No source is allowed (an extension may supply the image); one that is given must exist.
-    if (t.source != -1 && !inRange(t.source, model.images.size()))
-      return bad(file, "textures[{}].source {} does not exist ({} images)", i, t.source, model.images.size());
-    if (t.sampler != -1 && !inRange(t.sampler, model.samplers.size()))
-      return bad(file, "textures[{}].sampler {} does not exist ({} samplers)", i, t.sampler, model.samplers.size());
-  }
-  for (size_t i = 0; i < model.images.size(); ++i) {
-    const tinygltf::Image& im = model.images[i];
-    if (im.bufferView != -1 && !inRange(im.bufferView, model.bufferViews.size()))
-      return bad(file, "images[{}].bufferView {} does not exist", i, im.bufferView);
-  }
+// Values the schema allows (any integer or string, for forward compatibility) but glTF 2.0 does not
+// define: the validator only warns, so the file loads, with the default the converters use.
+void warnUnknownEnums(const tinygltf::Model& model, const std::string& file) {
   auto filter = [](int f, bool min) { return f == -1 || f == 9728 || f == 9729 || (min && f >= 9984 && f <= 9987); };
   auto wrap = [](int w) { return w == -1 || w == 33071 || w == 33648 || w == 10497; };
   for (size_t i = 0; i < model.samplers.size(); ++i) {
     const tinygltf::Sampler& s = model.samplers[i];
-    if (!filter(s.magFilter, false)) return bad(file, "samplers[{}].magFilter {} is not 9728 or 9729", i, s.magFilter);
+    if (!filter(s.magFilter, false))
+      log::warn("{}: samplers[{}].magFilter {} is not 9728 or 9729; filtering linearly", file, i, s.magFilter);
     if (!filter(s.minFilter, true))
-      return bad(file, "samplers[{}].minFilter {} is not one of 9728, 9729, 9984-9987", i, s.minFilter);
-    if (!wrap(s.wrapS)) return bad(file, "samplers[{}].wrapS {} is not 33071, 33648 or 10497", i, s.wrapS);
-    if (!wrap(s.wrapT)) return bad(file, "samplers[{}].wrapT {} is not 33071, 33648 or 10497", i, s.wrapT);
+      log::warn("{}: samplers[{}].minFilter {} is not one of 9728, 9729, 9984-9987; filtering linearly with mipmaps",
+                file, i, s.minFilter);
+    if (!wrap(s.wrapS))
+      log::warn("{}: samplers[{}].wrapS {} is not 33071, 33648 or 10497; repeating", file, i, s.wrapS);
+    if (!wrap(s.wrapT))
+      log::warn("{}: samplers[{}].wrapT {} is not 33071, 33648 or 10497; repeating", file, i, s.wrapT);
   }
-  // The core material textures; an index must name a texture.
+  for (size_t i = 0; i < model.cameras.size(); ++i)
+    if (model.cameras[i].type != "perspective" && model.cameras[i].type != "orthographic")
+      log::warn("{}: cameras[{}].type '{}' is neither perspective nor orthographic; read as perspective", file, i,
+                model.cameras[i].type);
   for (size_t i = 0; i < model.materials.size(); ++i) {
-    const tinygltf::Material& m = model.materials[i];
-    const std::pair<const char*, int> refs[] = {
-        {"pbrMetallicRoughness.baseColorTexture", m.pbrMetallicRoughness.baseColorTexture.index},
-        {"pbrMetallicRoughness.metallicRoughnessTexture", m.pbrMetallicRoughness.metallicRoughnessTexture.index},
-        {"normalTexture", m.normalTexture.index},
-        {"occlusionTexture", m.occlusionTexture.index},
-        {"emissiveTexture", m.emissiveTexture.index}};
-    for (const auto& [name, index] : refs)
-      if (index != -1 && !inRange(index, model.textures.size()))
-        return bad(file, "materials[{}].{} uses texture {}, which does not exist ({} textures)", i, name, index,
-                   model.textures.size());
+    const std::string& mode = model.materials[i].alphaMode;
+    if (mode != "OPAQUE" && mode != "MASK" && mode != "BLEND")
+      log::warn("{}: materials[{}].alphaMode '{}' is not OPAQUE, MASK or BLEND; drawn opaque", file, i, mode);
   }
-  return okStatus();
-}
-
-Status checkCameras(const tinygltf::Model& model, const std::string& file) {
-  for (size_t i = 0; i < model.cameras.size(); ++i) {
-    const tinygltf::Camera& c = model.cameras[i];
-    if (c.type == "perspective") {
-      const tinygltf::PerspectiveCamera& p = c.perspective;
-      if (!(p.yfov > 0.0)) return bad(file, "cameras[{}].perspective.yfov {} is not above 0", i, p.yfov);
-      if (!(p.znear > 0.0)) return bad(file, "cameras[{}].perspective.znear {} is not above 0", i, p.znear);
-      if (p.zfar != 0.0 && !(p.zfar > p.znear))  // 0: absent (an infinite projection)
-        return bad(file, "cameras[{}].perspective.zfar {} is not beyond znear {}", i, p.zfar, p.znear);
-      if (p.aspectRatio != 0.0 && !(p.aspectRatio > 0.0))
-        return bad(file, "cameras[{}].perspective.aspectRatio {} is not above 0", i, p.aspectRatio);
-    } else if (c.type == "orthographic") {
-      const tinygltf::OrthographicCamera& o = c.orthographic;
-      if (o.xmag == 0.0 || o.ymag == 0.0) return bad(file, "cameras[{}].orthographic xmag or ymag is 0", i);
-      if (!(o.znear >= 0.0)) return bad(file, "cameras[{}].orthographic.znear {} is negative", i, o.znear);
-      if (!(o.zfar > o.znear))
-        return bad(file, "cameras[{}].orthographic.zfar {} is not beyond znear {}", i, o.zfar, o.znear);
-    } else {
-      return bad(file, "cameras[{}].type '{}' is neither perspective nor orthographic", i, c.type);
-    }
-  }
-  return okStatus();
-}
-
-Status checkLights(const tinygltf::Model& model, const std::string& file) {
-  constexpr double kHalfPi = std::numbers::pi / 2.0;
-  for (size_t i = 0; i < model.lights.size(); ++i) {
-    const tinygltf::Light& l = model.lights[i];
-    if (!(l.intensity >= 0.0))
-      return bad(file, "KHR_lights_punctual light {} has negative intensity {}", i, l.intensity);
-    if (l.range != 0.0 && !(l.range > 0.0))  // 0: absent (no range)
-      return bad(file, "KHR_lights_punctual light {} has range {}, not above 0", i, l.range);
-    if (l.type == "spot") {
-      const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
-      if (!(outer > 0.0 && outer <= kHalfPi))
-        return bad(file, "KHR_lights_punctual light {}: spot.outerConeAngle {} is not in (0, pi/2]", i, outer);
-      if (!(inner >= 0.0 && inner < outer))
-        return bad(file, "KHR_lights_punctual light {}: spot.innerConeAngle {} is not in [0, outerConeAngle {})", i,
-                   inner, outer);
-    }
-  }
-  return okStatus();
 }
 
 // ---- JSON types, before tinygltf reads the file: tinygltf skips a property of the wrong type
@@ -269,17 +172,27 @@ Status checkJsonTypes(const std::string& file, const nlohmann::json& root) {
       for (const char* key : {"source", "sampler"})
         RAYSTER_TRY(eachMember((*textures)[i], key,
                                [&](const Json& v) { return t.index(v, fmt::format("textures[{}].{}", i, key)); }));
+  return checkSchema(file, root);
+}
+
+Status explainGlbBuffer(const std::string& file, std::string_view json, int64_t binLength) {
+  const Json root = Json::parse(json.begin(), json.end(), nullptr, false);
+  const auto buffers = root.is_object() ? root.find("buffers") : root.end();
+  if (!root.is_object() || buffers == root.end() || !buffers->is_array() || buffers->empty()) return okStatus();
+  const Json& b = (*buffers)[0];
+  if (!b.is_object() || b.contains("uri")) return okStatus();
+  if (binLength < 0) return bad(file, "buffers[0]: has no uri, and the GLB has no BIN chunk to hold its bytes");
+  const auto length = b.find("byteLength");
+  if (length != b.end() && length->is_number_unsigned() && length->get<uint64_t>() > uint64_t(binLength))
+    return bad(file, "buffers[0].byteLength: {}, but the GLB BIN chunk holds {} bytes", length->get<uint64_t>(),
+               binLength);
   return okStatus();
 }
 
 Status validateModel(const tinygltf::Model& model, const std::string& file) {
-  RAYSTER_TRY(checkAsset(model.asset, file));
-  if (model.defaultScene != -1 && !inRange(model.defaultScene, model.scenes.size()))
-    return bad(file, "scene {} does not exist ({} scenes)", model.defaultScene, model.scenes.size());
-  RAYSTER_TRY(checkNodes(model, file));
-  RAYSTER_TRY(checkTextures(model, file));
-  RAYSTER_TRY(checkCameras(model, file));
-  RAYSTER_TRY(checkLights(model, file));
+  // The schema and the links were checked on the JSON (checkSchema); what is left is in the data.
+  RAYSTER_TRY(checkAccessorData(model, file));
+  warnUnknownEnums(model, file);
   return okStatus();
 }
 

@@ -22,6 +22,7 @@
 #include <stb/stb_image.h>
 #include <tiny_obj_loader.h>
 
+#include "core/image_io.h"
 #include "core/log.h"
 #include "scene/loader.h"
 
@@ -237,6 +238,10 @@ class TextureLoader {
     if (w <= 0 || h <= 0 || w > kMaxTextureSide || h > kMaxTextureSide)
       return makeError(ExitCode::BadInput, "{}: {} '{}' is {}x{}, more than the {} pixels per side Rayster accepts",
                        file_, what, ref, w, h, kMaxTextureSide);
+    if (const std::string hazard = stbDecodeHazard(bytes.data(), bytes.size()); !hazard.empty()) {
+      log::warn("{}: {} '{}' cannot be decoded ({}), rendering without it", file_, what, ref, hazard);
+      return -1;
+    }
     uint8_t* pixels = stbi_load_from_memory(bytes.data(), size, &w, &h, &channels, 4);
     if (!pixels) {
       log::warn("{}: {} '{}' cannot be decoded ({}), rendering without it", file_, what, ref,

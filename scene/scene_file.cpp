@@ -354,8 +354,8 @@ Result<json> parseJson(const fs::path& path) {
     const size_t line = size_t(std::count(text.begin(), text.begin() + std::ptrdiff_t(bad), '\n')) + 1;
     const size_t lineStart = text.rfind('\n', bad == 0 ? 0 : bad - 1);
     const size_t column = lineStart == std::string::npos || bad == 0 ? bad + 1 : bad - lineStart;
-    return makeError(ExitCode::BadInput, "{}: not UTF-8 text: byte 0x{:02X} at line {}, column {}",
-                     path.filename().string(), unsigned(uint8_t(text[bad])), line, column);
+    return makeError(ExitCode::BadInput, "{}: not UTF-8 text: byte 0x{:02X} at byte offset {} (line {}, column {})",
+                     path.filename().string(), unsigned(uint8_t(text[bad])), bad, line, column);
   }
   try {
     return json::parse(text);

@@ -7,9 +7,10 @@ cd "$(dirname "$0")/.."
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
 cmake --build build
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
-# Fuzz smoke run of the glTF and OBJ loaders (clang, ASan + UBSan) on their committed corpora, 20 s
-# each: a smoke test that the fuzzers build and run clean, not a fuzzing campaign (scripts/fuzz.sh
-# SECONDS for that); RAYSTER_FUZZ_SECONDS=N changes it, 0 skips it.
+# Fuzz smoke run of the glTF and OBJ loaders (20 s each), the scene-file reader and the image
+# decoders (10 s each; clang, ASan + UBSan) on their committed corpora: a smoke test that the fuzzers
+# build and run clean, not a fuzzing campaign (scripts/fuzz.sh SECONDS for that);
+# RAYSTER_FUZZ_SECONDS=N changes it, 0 skips it.
 fuzz_seconds=${RAYSTER_FUZZ_SECONDS:-20}
 if [ "$fuzz_seconds" -gt 0 ]; then ./scripts/fuzz.sh "$fuzz_seconds"; fi
 cd build && ctest --output-on-failure -j2

@@ -1,8 +1,9 @@
 #!/usr/bin/env node
 // Runs the Khronos glTF-Validator (npm: gltf-validator) over the glTF/GLB files named on the command
-// line and prints one JSON line per file: {"file", "errors", "first"} (first: the first error's code
-// and message). External buffers and images are read from the file's folder. Used by the test that
-// cross-checks Rayster's loader against the validator (tests/unit/test_gltf_validator.cpp).
+// line and prints one JSON line per file: {"file", "errors", "first", "codes"} (first: the first
+// error's code and message; codes: the distinct error codes). External buffers and images are read
+// from the file's folder. Used by the tests that cross-check Rayster's loader against the validator
+// (tests/unit/test_gltf_validator.cpp, tests/unit/test_gltf_mutations.cpp).
 'use strict';
 const fs = require('fs');
 const path = require('path');
@@ -13,7 +14,7 @@ async function validate(file) {
   const dir = path.dirname(file);
   const report = await validator.validateBytes(bytes, {
     uri: path.basename(file),
-    maxIssues: 10,
+    maxIssues: 1000,
     externalResourceFunction: (uri) =>
       new Promise((resolve, reject) => {
         const p = path.resolve(dir, decodeURIComponent(uri));
@@ -21,8 +22,14 @@ async function validate(file) {
       }),
   });
   const errors = report.issues.numErrors;
-  const first = report.issues.messages.find((m) => m.severity === 0);
-  return {file, errors, first: first ? `${first.code} ${first.pointer || ''}: ${first.message}` : ''};
+  const errorMessages = report.issues.messages.filter((m) => m.severity === 0);
+  const first = errorMessages[0];
+  return {
+    file,
+    errors,
+    first: first ? `${first.code} ${first.pointer || ''}: ${first.message}` : '',
+    codes: [...new Set(errorMessages.map((m) => m.code))],
+  };
 }
 
 (async () => {

@@ -88,8 +88,8 @@ inline std::filesystem::path writeAlphaMaskGltf(const std::filesystem::path& dir
                      std::to_string(buf.size()) + R"(, "uri": "data:application/octet-stream;base64,)" + base64(buf) +
                      R"("}],
   "bufferViews": [
-    {"buffer": 0, "byteOffset": 0, "byteLength": 96},
-    {"buffer": 0, "byteOffset": 96, "byteLength": 96},
+    {"buffer": 0, "byteOffset": 0, "byteLength": 96, "byteStride": 12},
+    {"buffer": 0, "byteOffset": 96, "byteLength": 96, "byteStride": 12},
     {"buffer": 0, "byteOffset": 192, "byteLength": 64},
     {"buffer": 0, "byteOffset": 256, "byteLength": 24}
   ],
@@ -181,8 +181,8 @@ inline std::filesystem::path writeAnimatedGltf(const std::filesystem::path& dir)
                      std::to_string(buf.size()) + R"(, "uri": "data:application/octet-stream;base64,)" + base64(buf) +
                      R"("}],
   "bufferViews": [
-    {"buffer": 0, "byteOffset": 0, "byteLength": 96},
-    {"buffer": 0, "byteOffset": 96, "byteLength": 96},
+    {"buffer": 0, "byteOffset": 0, "byteLength": 96, "byteStride": 12},
+    {"buffer": 0, "byteOffset": 96, "byteLength": 96, "byteStride": 12},
     {"buffer": 0, "byteOffset": 192, "byteLength": 24},
     {"buffer": 0, "byteOffset": 216, "byteLength": 12},
     {"buffer": 0, "byteOffset": 228, "byteLength": 36}

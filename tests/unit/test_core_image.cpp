@@ -296,3 +296,32 @@ TEST(Log, PrefixesAndFilters) {
   EXPECT_EQ(::testing::internal::GetCapturedStderr(), "rayster: d\n");
   log::setLevel(saved);
 }
+
+// Debian's stb_image 2.27 writes past its Huffman tables for a JPEG table of more than 256 codes
+// (fuzz/fuzz_image.cpp found it); the readers refuse such a file before stb sees it.
+TEST(ImageIo, RefusesJpegHuffmanTablesStbWouldOverflow) {
+  const fs::path dir = test::testDir();
+  std::vector<uint8_t> jpeg = {0xFF, 0xD8, 0xFF, 0xC4, 0x00, 0x13, 0x00};
+  for (int i = 0; i < 16; ++i) jpeg.push_back(17);  // 272 codes
+  jpeg.insert(jpeg.end(), {0xFF, 0xD9});
+  EXPECT_NE(stbDecodeHazard(jpeg.data(), jpeg.size()).find("declares 272 codes"), std::string::npos);
+  std::ofstream(dir / "bad.png", std::ios::binary).write(reinterpret_cast<const char*>(jpeg.data()), jpeg.size());
+  Result<Image8> image = readPng(dir / "bad.png");
+  ASSERT_FALSE(image.ok());
+  EXPECT_EQ(image.error().code, ExitCode::BadInput);
+  EXPECT_NE(image.error().message.find("Huffman table declares 272 codes"), std::string::npos) << image.error().message;
+  // Ordinary files are not affected.
+  EXPECT_EQ(stbDecodeHazard(nullptr, 0), "");
+  const std::vector<uint8_t> png = {0x89, 'P', 'N', 'G'};
+  EXPECT_EQ(stbDecodeHazard(png.data(), png.size()), "");
+}
+
+// A header may claim any size; the readers refuse what is over 16384 per side before decoding.
+TEST(ImageIo, RefusesAbsurdDimensionsBeforeDecoding) {
+  const fs::path dir = test::testDir();
+  std::ofstream(dir / "huge.hdr", std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 100000\n";
+  Result<ImageF> image = readImageLinear(dir / "huge.hdr");
+  ASSERT_FALSE(image.ok());
+  EXPECT_NE(image.error().message.find("100000x100000 pixels, more than 16384 per side"), std::string::npos)
+      << image.error().message;
+}

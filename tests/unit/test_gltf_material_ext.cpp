@@ -41,6 +41,7 @@ TEST(GltfMaterialExt, SpecularFactorsAndTextures) {
   TempDir dir;
   Doc d = quadDoc();
   d.j["extensionsUsed"] = {"KHR_materials_specular", "KHR_texture_transform"};
+  primitive(d)["attributes"]["TEXCOORD_1"] = primitive(d)["attributes"]["TEXCOORD_0"];  // specularTexture reads it
   scene::Scene s = loadMaterials(dir, d, R"([
     {"name": "tinted", "extensions": {"KHR_materials_specular": {
        "specularFactor": 0.25, "specularTexture": {"index": 2, "texCoord": 1},
@@ -64,16 +65,23 @@ TEST(GltfMaterialExt, SpecularFactorsAndTextures) {
   EXPECT_FALSE(plain.specularColorTexture.valid());
 }
 
-TEST(GltfMaterialExt, SpecularFactorIsClampedToItsRange) {
-  TempDir dir;
-  Doc d = quadDoc();
-  scene::Scene s = loadMaterials(dir, d, R"([
-    {"extensions": {"KHR_materials_specular": {"specularFactor": 3, "specularColorFactor": [-1, 0.5, 1]}}},
-    {"extensions": {"KHR_materials_specular": {"specularFactor": -1}}}])");
-  ASSERT_EQ(s.materials.size(), 2u);
-  EXPECT_FLOAT_EQ(s.materials[0].specular, 1.0f) << "the schema's range is [0, 1]";
-  EXPECT_FLOAT_EQ(s.materials[0].specularColor.x, 0.0f) << "a negative colour reflects nothing";
-  EXPECT_FLOAT_EQ(s.materials[1].specular, 0.0f);
+// Outside the schema's ranges (specularFactor in [0, 1], specularColorFactor >= 0) the validator
+// reports an error, and the loader refuses the file naming the property.
+TEST(GltfMaterialExt, SpecularFactorsOutsideTheirRangeAreRefused) {
+  for (const auto& [specular, path] : std::vector<std::pair<const char*, const char*>>{
+           {R"({"specularFactor": 3})",
+            "materials[0].extensions.KHR_materials_specular.specularFactor: 3 is not [0, 1]"},
+           {R"({"specularFactor": -1})", "KHR_materials_specular.specularFactor: -1 is not [0, 1]"},
+           {R"({"specularColorFactor": [-1, 0.5, 1]})", "KHR_materials_specular.specularColorFactor[0]: -1"}}) {
+    TempDir dir;
+    Doc d = quadDoc();
+    d.j["extensionsUsed"] = {"KHR_materials_specular"};
+    d.j["materials"] = Json::array({{{"extensions", {{"KHR_materials_specular", Json::parse(specular)}}}}});
+    primitive(d)["material"] = 0;
+    Result<scene::Scene> s = loadBytes(dir, d.gltf());
+    ASSERT_FALSE(s.ok()) << specular;
+    EXPECT_NE(s.error().message.find(path), std::string::npos) << s.error().message;
+  }
 }
 
 }  // namespace

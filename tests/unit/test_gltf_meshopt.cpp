@@ -56,7 +56,7 @@ struct MeshoptDoc {
     d.bin.insert(d.bin.end(), encoded.begin(), encoded.end());
     fallbackSize = (fallbackSize + 3) & ~size_t(3);
     Json v = {{"buffer", 1}, {"byteOffset", fallbackSize}, {"byteLength", count * stride}};
-    if (mode == "ATTRIBUTES") v["byteStride"] = stride;
+    // No byteStride on the view: tightly packed is its default, and animation data must not have one.
     Json ext = {{"buffer", 0},          {"byteOffset", source}, {"byteLength", encoded.size()},
                 {"byteStride", stride}, {"count", count},       {"mode", mode}};
     if (filter != "NONE") ext["filter"] = filter;

@@ -184,10 +184,10 @@ TEST_F(SceneFileTest, RejectsTextThatIsNotUtf8WithItsPosition) {
     for (char c : scene.error().message) EXPECT_LT(uint8_t(c), 0x80) << scene.error().message;
   };
   rejected("{\"models\": [{\"path\": \"\xff\xfe.obj\"}]}",
-           "scene.json: not UTF-8 text: byte 0xFF at line 1, column 23");
-  rejected("{\n  \"name\": \"caf\xc3\"\n}", "byte 0xC3 at line 2, column 15");  // a truncated sequence
-  rejected("{\"name\": \"\xc0\xaf\"}", "byte 0xC0 at line 1, column 11");       // an overlong '/'
-  rejected("{\"name\": \"\xed\xa0\x80\"}", "byte 0xED at line 1, column 11");   // a surrogate
+           "scene.json: not UTF-8 text: byte 0xFF at byte offset 22 (line 1, column 23)");
+  rejected("{\n  \"name\": \"caf\xc3\"\n}", "byte 0xC3 at byte offset 16 (line 2, column 15)");  // a truncated sequence
+  rejected("{\"name\": \"\xc0\xaf\"}", "byte 0xC0 at byte offset 10 (line 1, column 11)");       // an overlong '/'
+  rejected("{\"name\": \"\xed\xa0\x80\"}", "byte 0xED at byte offset 10 (line 1, column 11)");   // a surrogate
   // Well-formed UTF-8 is text like any other: a name in any script loads.
   write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   Result<Scene> ok = loadSceneFile(

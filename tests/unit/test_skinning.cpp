@@ -130,7 +130,7 @@ TEST(Skinning, MalformedSkinsAndTargetsAreRefused) {
   {
     Doc d = skinnedQuad();
     d.j["meshes"][0]["primitives"][0]["attributes"].erase("WEIGHTS_1");
-    EXPECT_NE(refusal(d).find("JOINTS_1 without WEIGHTS_1"), std::string::npos) << refusal(d);
+    EXPECT_NE(refusal(d).find("attributes: 2 JOINTS_n sets but 1 WEIGHTS_n sets"), std::string::npos) << refusal(d);
   }
   {
     Doc d = skinnedQuad();
