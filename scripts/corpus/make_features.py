@@ -51,8 +51,14 @@ def floor(name, size, color):
                            [(0, 1, 2, 3)], lib.principled(name, color, roughness=0.8))
 
 
+# Light power for Rayster at the goldens' unit exposure (--exposure 0): the exporter writes
+# W / 4 pi x 683 cd, so 1.5 W is 82 cd, about 3.5 lux on the subject 4.9 m away (white Lambert
+# radiance about 1). Cycles would need exposure +9.4 to show these files as bright.
+kKeyWatts = 1.5
+
+
 def key_light():
-    lib.point_light("Key", (2.5, -3.0, 4.0), 600.0, 0.1)
+    lib.point_light("Key", (2.5, -3.0, 4.0), kKeyWatts, 0.1)
 
 
 # ---- skinned.glb -----------------------------------------------------------------------------
@@ -110,7 +116,7 @@ def build_skinned():
     rig.animation_data.action.name = "Bend"
 
     # Seen from +X: the limb bends towards -Y, across the picture.
-    lib.camera("Camera", (6.5, 0.0, 1.6), (0.0, -0.4, 1.0), 40.0)
+    lib.camera("Camera", (4.8, 0.0, 1.4), (0.0, -0.45, 1.0), 40.0)
     key_light()
     scene.name = "skinned"
     return scene
@@ -178,7 +184,7 @@ def build_vertex_colors():
     panel.data.color_attributes.render_color_index = 0
     panel.data.color_attributes.active_color_index = 0
     lib.camera("Camera", (0.0, -5.0, 1.3), (0.0, 0.0, 1.15), 40.0)
-    lib.point_light("Key", (0.5, -4.0, 3.0), 800.0, 0.1)
+    lib.point_light("Key", (0.5, -4.0, 3.0), kKeyWatts, 0.1)
     scene.name = "vertex_colors"
     return scene
 
@@ -313,8 +319,8 @@ def build_materials():
         row, col = divmod(i, 3)
         uv_sphere_with_uvs(name, 0.4, ((col - 1) * 1.05, (1 - row) * 1.05, 0.4), mat)
     lib.camera("Camera", (0.0, -5.2, 3.6), (0.0, 0.0, 0.25), 40.0)
-    lib.point_light("Key", (2.0, -2.5, 4.0), 800.0, 0.1)
-    lib.sun_light("Sun", (0.3, 0.5, -1.0), 2.0)
+    lib.point_light("Key", (2.0, -2.5, 4.0), kKeyWatts, 0.1)
+    lib.sun_light("Sun", (0.3, 0.5, -1.0), 0.002)  # 1.4 lux: fills the shadows a little
     scene.name = "materials"
     return scene
 
