@@ -233,7 +233,7 @@ TEST(BlenderFeatures, AnimationMovesOnlyTheDeformingMeshAndPosesLikeTheSceneLaye
     ASSERT_TRUE(loaded.ok()) << loaded.error().message;
     const std::string common =
         " --mode raster --taa off --frames 1 --pause --size " + std::to_string(kW) + "x" + std::to_string(kH);
-    const std::vector<std::string> aovs = {"depth", "albedo"};
+    const std::vector<std::string> aovs = {"depth", "normal", "albedo"};
     const fs::path a = dir / stem / "t0", b = dir / stem / "t1", c = dir / stem / "baked";
     for (const fs::path& d : {a, b, c}) fs::create_directories(d);
     const float t1 = 1.9f;
