@@ -41,7 +41,10 @@ double LoadProgress::finish() {
     else
       log::info("{}: {} took {:.2f} s", what_, unit_, ms_ / 1000.0);
   } else {
-    log::debug("{}: {} ({}) in {:.1f} ms", what_, unit_, done_, ms_);
+    if (total_ > 0)
+      log::debug("{}: {}/{} {} in {:.1f} ms", what_, done_, total_, unit_, ms_);
+    else
+      log::debug("{}: {} in {:.1f} ms", what_, unit_, ms_);
   }
   return ms_;
 }

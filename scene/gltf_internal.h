@@ -143,8 +143,8 @@ Status validateModel(const tinygltf::Model& model, const std::string& file);
 
 // ---- gltf_materials.cpp: images, samplers, textures and materials, in glTF order ----
 
-Status convertMaterials(const tinygltf::Model& model, const std::string& file, const ImageDecodeState& images,
-                        Scene& scene);
+// Moves the decoded pixels out of model.images.
+Status convertMaterials(tinygltf::Model& model, const std::string& file, const ImageDecodeState& images, Scene& scene);
 
 // What converting a material needs: `textureMap` maps glTF texture indices to scene textures (-1
 // where unusable).

@@ -149,7 +149,7 @@ Material convertMaterial(const MaterialContext& ctx, const tinygltf::Material& s
 // render without its base colour or normal map is a wrong result that looks like a right one. The
 // one-line cause names the image and the material, so the fix (supply it, or drop it from the
 // material) is quick.
-Result<ImageData> convertImage(const tinygltf::Image& src, size_t index, const std::string& file,
+Result<ImageData> convertImage(tinygltf::Image& src, size_t index, const std::string& file,
                                const std::string& material) {
   ImageData img;
   img.name = !src.name.empty() ? src.name : !src.uri.empty() ? src.uri : fmt::format("image{}", index);
@@ -165,7 +165,7 @@ Result<ImageData> convertImage(const tinygltf::Image& src, size_t index, const s
     return bad(file, "image {} '{}' has inconsistent pixel data", index, img.name);
   img.width = src.width;
   img.height = src.height;
-  img.rgba = src.image;
+  img.rgba = std::move(src.image);  // the model's copy is not read again (hundreds of MB in big files)
   return img;
 }
 
@@ -288,11 +288,11 @@ bool decodeImages(tinygltf::Model& model, const std::string& file, ImageDecodeSt
 
 // The images materials show, into scene.images; imageMap[glTF image] is the scene image, or -1
 // for one no material shows (skipped, with a warning when it is missing: it may be a mistake).
-Result<std::vector<int32_t>> convertImages(const tinygltf::Model& model, const std::string& file,
+Result<std::vector<int32_t>> convertImages(tinygltf::Model& model, const std::string& file,
                                            const ImageDecodeState& images, Scene& scene) {
   std::vector<int32_t> imageMap(model.images.size(), -1);
   for (size_t i = 0; i < model.images.size(); ++i) {
-    const tinygltf::Image& src = model.images[i];
+    tinygltf::Image& src = model.images[i];
     const int material = i < images.imageMaterial.size() ? images.imageMaterial[i] : -1;
     if (material < 0) {
       if (i < images.reached.size() && !images.reached[i])
@@ -347,8 +347,7 @@ Result<int> textureSource(const tinygltf::Model& model, size_t index, const Imag
   return kNotShown;
 }
 
-Status convertMaterials(const tinygltf::Model& model, const std::string& file, const ImageDecodeState& images,
-                        Scene& scene) {
+Status convertMaterials(tinygltf::Model& model, const std::string& file, const ImageDecodeState& images, Scene& scene) {
   Result<std::vector<int32_t>> imageMap = convertImages(model, file, images, scene);
   if (!imageMap) return imageMap.error();
   for (const tinygltf::Sampler& s : model.samplers) scene.samplers.push_back(convertSampler(s));
