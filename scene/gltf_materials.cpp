@@ -1,6 +1,7 @@
 // glTF images, samplers, textures and materials -> scene::ImageData, Sampler, Texture, Material.
 #include <cfloat>
 #include <cmath>
+#include <exception>
 
 #include <stb/stb_image.h>  // declarations only: the implementation lives in core/image_io.cpp
 
@@ -272,7 +273,14 @@ bool decodeImages(tinygltf::Model& model, const std::string& file, ImageDecodeSt
   parallelFor(pending.size(), [&](size_t k) {
     const size_t index = pending[k].image;
     // tinygltf stops at a failing image, so an image past it may not be in the model (yet).
-    if (index < model.images.size()) errors[k] = decodeOne(model.images[index], index, pending[k].bytes, ktxErrors[k]);
+    // An exception must not leave a worker thread (std::terminate); it reads as it did when it
+    // came out of tinygltf's callback (parse() catches those).
+    try {
+      if (index < model.images.size())
+        errors[k] = decodeOne(model.images[index], index, pending[k].bytes, ktxErrors[k]);
+    } catch (const std::exception& e) {
+      errors[k] = "invalid glTF: " + oneLine(e.what());
+    }
     std::vector<uint8_t>().swap(pending[k].bytes);  // the encoded copy is done with
     progress.advance();
   });
