@@ -202,8 +202,12 @@ int renderCommand(const RenderOptions& o) {
 
   int code = 0;
   {
+    const auto uploadStart = std::chrono::steady_clock::now();
     auto renderer = render::Renderer::create(**ctx, *scene);
     if (!renderer) return fail(renderer.error());
+    // Load time = the "loaded" line above + this (BENCHMARKS.md, "Loading big scenes").
+    log::debug("scene on the device in {:.0f} ms",
+               std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - uploadStart).count());
     auto t0 = std::chrono::steady_clock::now();
     settings.aovs = *aovs;
     if (settings.frames > 1) settings.progress = frameProgress(isatty(STDERR_FILENO));

@@ -17,7 +17,9 @@
 #include <cmath>
 #include <map>
 
+#include "core/load_progress.h"
 #include "render/gpu_scene.h"
+#include "render/gpu_upload.h"
 #include "rhi/context.h"
 #include "rhi/upload.h"
 #include "shaders/shared/types.h"
@@ -40,10 +42,19 @@ VkFilter toVk(scene::Filter f) { return f == scene::Filter::Nearest ? VK_FILTER_
 }  // namespace
 
 rhi::Image uploadTexture(rhi::Context& ctx, const scene::ImageData& img) {
+  rhi::UploadBatch batch(ctx);
+  return uploadTexture(batch, img);
+}
+
+void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs) {
+  rhi::UploadBatch batch(ctx);
+  uploadMaterials(ctx, scene, gs, batch);
+}
+
+rhi::Image uploadTexture(rhi::UploadBatch& batch, const scene::ImageData& img) {
   // UNORM storage with an sRGB view: colour textures sample through the view, data textures not.
   rhi::ImageDesc desc{VK_FORMAT_R8G8B8A8_UNORM, uint32_t(img.width), uint32_t(img.height), 1, 0, false, 1, true};
-  return rhi::uploadImage(ctx, desc, std::as_bytes(std::span(img.rgba)), true,
-                          img.name.empty() ? "texture" : img.name.c_str());
+  return batch.image(desc, std::as_bytes(std::span(img.rgba)), true, img.name.empty() ? "texture" : img.name.c_str());
 }
 
 SpecularSurfaces specularSurfaces(const scene::Scene& scene) {
@@ -92,11 +103,17 @@ std::string layersApproximated(const scene::Scene& scene) {
          " as the base layer alone (isotropic, no coat, sheen or film, one η); --mode pathtrace renders them";
 }
 
-void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs) {
+void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs, rhi::UploadBatch& batch) {
   gs.bindless = std::make_unique<rhi::BindlessTextures>(ctx);
   for (const scene::Sampler& s : scene.samplers)
     gs.samplers.emplace_back(ctx, toVk(s.magFilter), toVk(s.minFilter), toVk(s.wrapS), toVk(s.wrapT), s.mipmaps);
-  for (const scene::ImageData& img : scene.images) gs.textures.push_back(uploadTexture(ctx, img));
+  {
+    LoadProgress progress("loading " + scene.name, "textures uploaded", scene.images.size());
+    for (const scene::ImageData& img : scene.images) {
+      gs.textures.push_back(uploadTexture(batch, img));
+      progress.advance();
+    }
+  }
 
   std::map<std::pair<int32_t, bool>, uint32_t> slots;  // (texture, sRGB) -> bindless slot
   auto slotFor = [&](const scene::TextureRef& ref, bool srgb) -> gpu::TextureSlot {

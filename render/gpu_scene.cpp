@@ -1,14 +1,21 @@
 #include "render/gpu_scene.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "core/load_progress.h"
+#include "core/log.h"
+#include "core/parallel.h"
 #include "render/deform.h"
+#include "render/gpu_upload.h"
 #include "render/passes/cull.h"
+#include "rhi/accel_build.h"
 #include "rhi/context.h"
 #include "scene/skinning.h"
 #include "scene/tangents.h"
@@ -95,13 +102,14 @@ std::vector<gpu::Vertex> gpuVertices(const scene::Primitive& src) {
 namespace {
 
 // Triangles: vertices (with tangents) and indices; the BLAS reads positions at offset 0.
-void addTriangles(rhi::Context& ctx, const scene::Scene& scene, const scene::Primitive& prim, bool mixedSides,
-                  GpuScene& gs, std::vector<gpu::GeometryRecord>& rows, std::vector<rhi::BlasGeometry>& blas) {
-  const std::vector<gpu::Vertex> vertices = gpuVertices(prim);
-  const rhi::Buffer& vb = gs.vertexBuffers.emplace_back(
-      rhi::createBufferWithData(ctx, std::as_bytes(std::span(vertices)), geometryUsage(ctx), "vertices"));
-  const rhi::Buffer& ib = gs.indexBuffers.emplace_back(
-      rhi::createBufferWithData(ctx, std::as_bytes(std::span(prim.indices)), geometryUsage(ctx), "indices"));
+void addTriangles(rhi::UploadBatch& batch, const scene::Scene& scene, const scene::Primitive& prim,
+                  const std::vector<gpu::Vertex>& vertices, bool mixedSides, GpuScene& gs,
+                  std::vector<gpu::GeometryRecord>& rows, std::vector<rhi::BlasGeometry>& blas) {
+  const VkBufferUsageFlags usage = geometryUsage(batch.context());
+  const rhi::Buffer& vb =
+      gs.vertexBuffers.emplace_back(batch.buffer(std::as_bytes(std::span(vertices)), usage, "vertices"));
+  const rhi::Buffer& ib =
+      gs.indexBuffers.emplace_back(batch.buffer(std::as_bytes(std::span(prim.indices)), usage, "indices"));
   uint64_t colorAddress = 0;  // no COLOR_0: white, and no buffer (gpu::GeometryRecord::colorAddress)
   if (!prim.colors.empty()) {
     std::vector<glm::uvec2> colors(prim.colors.size());
@@ -110,8 +118,8 @@ void addTriangles(rhi::Context& ctx, const scene::Scene& scene, const scene::Pri
       colors[i] = {c.r | (c.g << 16), c.b | (c.a << 16)};  // unpackUnorm2x16's order: low half first
     }
     colorAddress = gs.colorBuffers
-                       .emplace_back(rhi::createBufferWithData(ctx, std::as_bytes(std::span(colors)),
-                                                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "vertex-colors"))
+                       .emplace_back(batch.buffer(std::as_bytes(std::span(colors)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                  "vertex-colors"))
                        .address();
   }
   rows.push_back({vb.address(), ib.address(), prim.material, uint32_t(vertices.size()), uint32_t(prim.indices.size()),
@@ -142,12 +150,44 @@ void addSpheres(rhi::Context& ctx, const scene::Scene& scene, const std::vector<
   blas.push_back({uint32_t(boxes.size()), ab.address(), 0, 0, 0, 0, 0, opaque});
 }
 
+// Every primitive's vertices as uploaded, [mesh][primitive], converted in parallel (tangent
+// generation dominates on files without tangents).
+std::vector<std::vector<std::vector<gpu::Vertex>>> convertVertices(const scene::Scene& scene) {
+  std::vector<std::vector<std::vector<gpu::Vertex>>> out(scene.meshes.size());
+  std::vector<std::pair<size_t, size_t>> work;
+  size_t vertices = 0;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    out[m].resize(scene.meshes[m].primitives.size());
+    for (size_t p = 0; p < out[m].size(); ++p) {
+      work.emplace_back(m, p);
+      vertices += scene.meshes[m].primitives[p].positions.size();
+    }
+  }
+  // Largest first, so one huge primitive does not start last and run alone.
+  std::sort(work.begin(), work.end(), [&](const auto& a, const auto& b) {
+    return scene.meshes[a.first].primitives[a.second].positions.size() >
+           scene.meshes[b.first].primitives[b.second].positions.size();
+  });
+  LoadProgress progress("loading " + scene.name, "primitives converted", work.size());
+  parallelFor(work.size(), [&](size_t k) {
+    const auto [m, p] = work[k];
+    out[m][p] = gpuVertices(scene.meshes[m].primitives[p]);
+    progress.advance();
+  });
+  progress.finish();
+  log::debug("scene '{}': {} vertices in {} primitives converted", scene.name, vertices, work.size());
+  return out;
+}
+
 }  // namespace
 
 Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   RAYSTER_TRY(scene::validate(scene));
   GpuScene gs;
   auto t0 = Clock::now();
+  std::vector<std::vector<std::vector<gpu::Vertex>>> vertices = convertVertices(scene);
+  rhi::UploadBatch batch(ctx);
+  LoadProgress uploadPhase("loading " + scene.name, "upload");
 
   std::vector<gpu::GeometryRecord> geometryRows;
   std::vector<uint32_t> meshFirstGeometry;
@@ -170,14 +210,33 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     meshFirstGeometry.push_back(uint32_t(geometryRows.size()));
     auto& inputs = blasInputs.emplace_back();
     uint64_t triangles = 0;
-    for (const scene::Primitive& prim : mesh.primitives) {
-      addTriangles(ctx, scene, prim, meshSides.back() == Sidedness::Mixed, gs, geometryRows, inputs);
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const scene::Primitive& prim = mesh.primitives[p];
+      std::vector<gpu::Vertex>& converted = vertices[size_t(&mesh - scene.meshes.data())][p];
+      addTriangles(batch, scene, prim, converted, meshSides.back() == Sidedness::Mixed, gs, geometryRows, inputs);
+      std::vector<gpu::Vertex>().swap(converted);  // staged: the host copy can go
       triangles += prim.indices.size() / 3;
     }
     if (!mesh.spheres.empty()) addSpheres(ctx, scene, mesh.spheres, gs, geometryRows, inputs);
     meshTriangles.push_back(triangles);
   }
-  uploadMaterials(ctx, scene, gs);
+  // The geometry first: the BLAS builds, submitted next on the same queue, read it (the batch's
+  // last barrier orders its copies before them, so nothing waits here). The device builds while
+  // the host stages the textures.
+  batch.submit();
+  const bool rayTracing = ctx.caps().rayTracing();
+  auto t1 = Clock::now();
+  std::optional<LoadProgress> accelPhase;
+  rhi::PendingBlases pendingBlases;
+  if (rayTracing) {
+    accelPhase.emplace("loading " + scene.name, "BLAS build");
+    pendingBlases = rhi::startBlasBuild(ctx, blasInputs, &gs.accelStats);
+  }
+  double accelMs = msSince(t1);
+  uploadMaterials(ctx, scene, gs, batch);
+  batch.submit();
+  log::debug("scene '{}': {:.1f} MiB uploaded in {} submissions", scene.name, double(batch.bytes()) / (1 << 20),
+             batch.submissions());
   uploadEnvironment(ctx, scene, gs);
   uploadDfgTable(ctx, gs);
 
@@ -257,7 +316,9 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   for (const auto& inputs : blasInputs)
     for (const rhi::BlasGeometry& g : inputs) gs.anyHit = gs.anyHit || !g.opaque;
   gs.bounds = scene.bounds();
-  gs.uploadMs = msSince(t0);
+  batch.wait();  // upload_ms counts the copies too; a no-op when a later upload waited already
+  gs.uploadMs = msSince(t0) - accelMs;
+  uploadPhase.finish();
 
   // The uploads waited for the device: their staging buffers can go, and the blocks they emptied
   // with them (they would stay reserved for the whole run otherwise).
@@ -265,13 +326,13 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     ctx.collectGarbage();
     ctx.memory().releaseEmptyBlocks();
   };
-  if (!ctx.caps().rayTracing()) {                 // the raster mode needs no acceleration structures
+  if (!rayTracing) {                              // the raster mode needs no acceleration structures
     gs.tlasInstances = std::move(tlasInstances);  // animation still poses them (never built)
     releaseStaging();
     return gs;
   }
-  auto t1 = Clock::now();
-  gs.blases = rhi::buildBlases(ctx, blasInputs, &gs.accelStats);
+  t1 = Clock::now();
+  gs.blases = rhi::finishBlasBuild(ctx, std::move(pendingBlases), &gs.accelStats);
   for (size_t t = 0; t < tlasInstances.size(); ++t) {
     auto& ti = tlasInstances[t];
     ti.accelerationStructureReference = tlasDeformer[t] >= 0
@@ -280,7 +341,8 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   }
   gs.tlas = rhi::Tlas::build(ctx, tlasInstances, &gs.accelStats);
   gs.tlasInstances = std::move(tlasInstances);
-  gs.accelBuildMs = msSince(t1);
+  gs.accelBuildMs = accelMs + msSince(t1);  // without the texture staging it overlapped
+  accelPhase->finish();
   releaseStaging();  // and the build's scratch
   return gs;
 }

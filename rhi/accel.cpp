@@ -1,4 +1,5 @@
 #include "rhi/accel.h"
+#include "rhi/accel_build.h"
 
 #include <algorithm>
 #include <cstring>
@@ -62,18 +63,19 @@ VkDeviceSize alignUp(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * 
 
 }  // namespace
 
-std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std::vector<BlasGeometry>> meshes,
-                                               AccelBuildStats* stats) {
+PendingBlases startBlasBuild(Context& ctx, std::span<const std::vector<BlasGeometry>> meshes, AccelBuildStats* stats) {
+  PendingBlases pending;
   const size_t n = meshes.size();
   std::vector<std::vector<VkAccelerationStructureGeometryKHR>> geoms(n);
   std::vector<std::vector<VkAccelerationStructureBuildRangeInfoKHR>> ranges(n);
   std::vector<VkAccelerationStructureBuildGeometryInfoKHR> infos(n);
-  std::vector<AccelerationStructure> built(n);
+  std::vector<AccelerationStructure>& built = pending.built;
+  built.resize(n);
   std::vector<VkDeviceSize> scratchOffsets(n);
   VkDeviceSize scratchTotal = 0;
   const VkDeviceSize scratchAlign = std::max<uint32_t>(ctx.caps().minScratchOffsetAlignment, 1);
 
-  std::vector<size_t> todo;  // meshes with geometry; an empty mesh gets no BLAS
+  std::vector<size_t>& todo = pending.todo;  // meshes with geometry; an empty mesh gets no BLAS
   for (size_t m = 0; m < n; ++m)
     if (!meshes[m].empty()) todo.push_back(m);
   for (size_t m : todo) {
@@ -125,11 +127,11 @@ std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std
     scratchTotal = alignUp(scratchTotal + sizes.buildScratchSize, scratchAlign);
     if (stats) stats->builtBytes += sizes.accelerationStructureSize;
   }
-  if (todo.empty()) return built;
+  if (todo.empty()) return pending;
 
-  Buffer scratch(ctx, scratchTotal + scratchAlign, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly,
-                 "blas-scratch");
-  const VkDeviceAddress scratchBase = alignUp(scratch.address(), scratchAlign);
+  pending.scratch = Buffer(ctx, scratchTotal + scratchAlign, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly,
+                           "blas-scratch");
+  const VkDeviceAddress scratchBase = alignUp(pending.scratch.address(), scratchAlign);
   std::vector<VkAccelerationStructureBuildGeometryInfoKHR> buildInfos;
   std::vector<const VkAccelerationStructureBuildRangeInfoKHR*> rangePtrs;
   for (size_t m : todo) {
@@ -142,10 +144,12 @@ std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std
   VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   qci.queryType = VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR;
   qci.queryCount = count;
-  VkQueryPool pool = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateQueryPool(ctx.device(), &qci, nullptr, &pool));
+  pending.device = ctx.device();
+  VK_CHECK(vkCreateQueryPool(ctx.device(), &qci, nullptr, &pending.pool));
+  const VkQueryPool pool = pending.pool;
   {
-    OneShot cmd(ctx);
+    CommandList cmd(ctx);
+    cmd.begin();
     vkCmdResetQueryPool(cmd, pool, 0, count);
     vkCmdBuildAccelerationStructuresKHR(cmd, count, buildInfos.data(), rangePtrs.data());
     asBuildBarrier(cmd, VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
@@ -154,12 +158,24 @@ std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std
     for (size_t m : todo) handles.push_back(built[m].handle());
     vkCmdWriteAccelerationStructuresPropertiesKHR(cmd, count, handles.data(),
                                                   VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR, pool, 0);
-    cmd.submitAndWait();
+    pending.timeline = cmd.submit();  // the command pool is retired until this has run
   }
+  return pending;
+}
+
+std::vector<AccelerationStructure> finishBlasBuild(Context& ctx, PendingBlases&& pending, AccelBuildStats* stats) {
+  const std::vector<size_t>& todo = pending.todo;
+  std::vector<AccelerationStructure>& built = pending.built;
+  const size_t n = built.size();
+  if (todo.empty()) return std::move(built);
+  ctx.wait(pending.timeline);
+  const uint32_t count = uint32_t(todo.size());
+  const VkQueryPool pool = pending.pool;
   std::vector<VkDeviceSize> compacted(count);
   VK_CHECK(vkGetQueryPoolResults(ctx.device(), pool, 0, count, count * sizeof(VkDeviceSize), compacted.data(),
                                  sizeof(VkDeviceSize), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   vkDestroyQueryPool(ctx.device(), pool, nullptr);
+  pending.pool = VK_NULL_HANDLE;
 
   std::vector<AccelerationStructure> result(n);
   OneShot cmd(ctx);
@@ -178,6 +194,11 @@ std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std
       VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR);
   cmd.submitAndWait();
   return result;  // `built` (uncompacted) is retired here
+}
+
+std::vector<AccelerationStructure> buildBlases(Context& ctx, std::span<const std::vector<BlasGeometry>> meshes,
+                                               AccelBuildStats* stats) {
+  return finishBlasBuild(ctx, startBlasBuild(ctx, meshes, stats), stats);
 }
 
 namespace {

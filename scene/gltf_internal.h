@@ -68,18 +68,28 @@ struct ConfinedFs {
 };
 tinygltf::FsCallbacks makeConfinedFsCallbacks(ConfinedFs* fs);
 
-// tinygltf image loader: decodes to RGBA8 the images a material shows (imageMaterial >= 0),
-// refusing absurd dimensions before decoding; the others are passed over undecoded.
+// tinygltf image loader: keeps the encoded bytes of the images a material shows (imageMaterial >=
+// 0); the others are passed over undecoded. decodeImages() then decodes them to RGBA8 in parallel
+// once tinygltf is done, refusing absurd dimensions before decoding.
 struct ImageDecodeState {
   std::vector<int> imageMaterial;  // from VettedJson
   std::vector<bool> reached;       // per image: its bytes reached the loader (it is not missing)
-  std::string error;               // the first failure, without the file name
+  std::string error;               // the first failure (lowest image index), without the file name
   // Per image: why its KTX2 data could not be decoded ("" for none). Not a failure by itself: a
   // KHR_texture_basisu texture falls back to its `source` (convertMaterials decides).
   std::vector<std::string> ktxError;
+  struct Encoded {
+    size_t image = 0;
+    std::vector<uint8_t> bytes;
+  };
+  std::vector<Encoded> pending;  // in image order, waiting for decodeImages()
 };
 bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::string* warn, int reqWidth,
                  int reqHeight, const unsigned char* bytes, int size, void* user);
+// Decodes state.pending into model.images (parallelFor), with progress for `file`. Sets
+// state.error to the failure of the lowest-numbered image, as decoding them in order would have
+// stopped at; false when there is one.
+bool decodeImages(tinygltf::Model& model, const std::string& file, ImageDecodeState& state);
 
 // ---- gltf_accessor.cpp: bounds-checked accessor reads ----
 
@@ -136,8 +146,8 @@ Status validateModel(const tinygltf::Model& model, const std::string& file);
 
 // ---- gltf_materials.cpp: images, samplers, textures and materials, in glTF order ----
 
-Status convertMaterials(const tinygltf::Model& model, const std::string& file, const ImageDecodeState& images,
-                        Scene& scene);
+// Moves the decoded pixels out of model.images.
+Status convertMaterials(tinygltf::Model& model, const std::string& file, const ImageDecodeState& images, Scene& scene);
 
 // What converting a material needs: `textureMap` maps glTF texture indices to scene textures (-1
 // where unusable).

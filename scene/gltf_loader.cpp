@@ -11,6 +11,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/load_progress.h"
 #include "core/log.h"
 #include "scene/gltf_internal.h"
 
@@ -66,6 +67,7 @@ int64_t glbBinLength(const std::vector<uint8_t>& bytes, size_t jsonLength) {
 // Reads and parses the file; `images` learns which images a material shows and which were found.
 Result<tinygltf::Model> parse(const fs::path& path, const std::string& file, ImageDecodeState& images,
                               std::vector<FallbackBuffer>& fallbacks, std::vector<DetachedIndices>& detached) {
+  LoadProgress parsed("loading " + file, "parse");  // reading, vetting and tinygltf
   Result<std::vector<uint8_t>> bytes = readFile(path, file);
   if (!bytes) return bytes.error();
   const bool binary = bytes->size() >= 4 && std::memcmp(bytes->data(), "glTF", 4) == 0;
@@ -106,9 +108,13 @@ Result<tinygltf::Model> parse(const fs::path& path, const std::string& file, Ima
   } catch (const std::exception& e) {
     return bad(file, "invalid glTF: {}", oneLine(e.what()));
   }
+  parsed.finish();
   if (!confined.violation.empty()) return bad(file, "{}", confined.violation);
+  // Images are decoded now, in parallel. tinygltf reads them before anything after them that it
+  // could fail on, so an image's failure still wins over a later parse error, as when it stopped
+  // at the image.
+  if (!decodeImages(model, file, images)) return bad(file, "{}", images.error);
   if (!ok) {
-    if (!images.error.empty()) return bad(file, "{}", images.error);
     if (binary) RAYSTER_TRY(explainGlbBuffer(file, json, glbBinLength(*bytes, json.size())));
     return bad(file, "invalid glTF: {}", oneLine(err.empty() ? std::string("tinygltf failed") : err));
   }
@@ -402,7 +408,9 @@ Result<Scene> loadGltf(const fs::path& path) {
   RAYSTER_TRY(gltf::convertMaterials(*model, file, images, scene));
   RAYSTER_TRY(gltf::readVariantNames(*model, file, scene));
   std::vector<int> sceneNodeOf;
+  LoadProgress meshes("loading " + file, "mesh conversion");
   RAYSTER_TRY(gltf::convertNodes(*model, file, scene, sceneNodeOf));
+  meshes.finish();
   RAYSTER_TRY(gltf::convertSkins(*model, file, sceneNodeOf, scene));
   RAYSTER_TRY(gltf::convertAnimations(*model, file, sceneNodeOf, scene));
 

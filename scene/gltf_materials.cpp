@@ -1,12 +1,15 @@
 // glTF images, samplers, textures and materials -> scene::ImageData, Sampler, Texture, Material.
 #include <cfloat>
 #include <cmath>
+#include <exception>
 
 #include <stb/stb_image.h>  // declarations only: the implementation lives in core/image_io.cpp
 
 #include "core/image_io.h"
 #include "core/ktx2.h"
+#include "core/load_progress.h"
 #include "core/log.h"
+#include "core/parallel.h"
 #include "scene/gltf_internal.h"
 
 namespace rayster::scene::gltf {
@@ -148,7 +151,7 @@ Material convertMaterial(const MaterialContext& ctx, const tinygltf::Material& s
 // render without its base colour or normal map is a wrong result that looks like a right one. The
 // one-line cause names the image and the material, so the fix (supply it, or drop it from the
 // material) is quick.
-Result<ImageData> convertImage(const tinygltf::Image& src, size_t index, const std::string& file,
+Result<ImageData> convertImage(tinygltf::Image& src, size_t index, const std::string& file,
                                const std::string& material) {
   ImageData img;
   img.name = !src.name.empty() ? src.name : !src.uri.empty() ? src.uri : fmt::format("image{}", index);
@@ -164,7 +167,7 @@ Result<ImageData> convertImage(const tinygltf::Image& src, size_t index, const s
     return bad(file, "image {} '{}' has inconsistent pixel data", index, img.name);
   img.width = src.width;
   img.height = src.height;
-  img.rgba = src.image;
+  img.rgba = std::move(src.image);  // the model's copy is not read again (hundreds of MB in big files)
   return img;
 }
 
@@ -203,62 +206,104 @@ double numberOr(const tinygltf::Value& object, const char* key, double fallback)
   return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
 }
 
-bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::string*, int, int,
-                 const unsigned char* bytes, int size, void* user) {
+bool decodeImage(tinygltf::Image*, int imageIndex, std::string*, std::string*, int, int, const unsigned char* bytes,
+                 int size, void* user) {
   auto* state = static_cast<ImageDecodeState*>(user);
   const size_t index = size_t(imageIndex);
   if (index < state->reached.size()) state->reached[index] = true;
   // Images no material shows are not decoded: nothing needs them, so a broken one costs nothing.
   if (index >= state->imageMaterial.size() || state->imageMaterial[index] < 0) return true;
-  auto fail = [&](std::string message) {
-    if (state->error.empty()) state->error = message;
-    if (err) *err += message + "\n";
-    return false;
-  };
+  // The bytes are tinygltf's (a buffer, or a file it frees on return): kept for decodeImages().
+  std::vector<uint8_t> copy;
+  if (bytes && size > 0) copy.assign(bytes, bytes + size);
+  state->pending.push_back({index, std::move(copy)});
+  return true;
+}
+
+namespace {
+
+// One image to RGBA8; an error message (without the file name) when it cannot be; `ktxError` gets
+// a KTX2 failure, which is not an error by itself.
+std::string decodeOne(tinygltf::Image& image, size_t index, const std::vector<uint8_t>& encoded,
+                      std::string& ktxError) {
+  const uint8_t* bytes = encoded.data();
+  const int size = int(encoded.size());
   auto fill = [&](int width, int height, const uint8_t* rgba) {
-    image->width = width;
-    image->height = height;
-    image->component = 4;
-    image->bits = 8;
-    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    image->image.assign(rgba, rgba + size_t(width) * size_t(height) * 4);
+    image.width = width;
+    image.height = height;
+    image.component = 4;
+    image.bits = 8;
+    image.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image.image.assign(rgba, rgba + size_t(width) * size_t(height) * 4);
   };
-  if (bytes && size > 0 && isKtx2({bytes, size_t(size)})) {
+  if (size > 0 && isKtx2({bytes, size_t(size)})) {
     Result<Image8> ktx = decodeKtx2({bytes, size_t(size)}, kMaxImageSide);
     if (!ktx) {
-      if (state->ktxError.size() <= index) state->ktxError.resize(index + 1);
-      state->ktxError[index] = ktx.error().message;
-      return true;  // left empty: convertMaterials uses a fallback image or says why it cannot
+      ktxError = ktx.error().message;
+      return {};  // left empty: convertMaterials uses a fallback image or says why it cannot
     }
     fill(ktx->width, ktx->height, ktx->rgba.data());
-    return true;
+    return {};
   }
+  // stb_image's failure reason is thread-local (STBI_THREAD_LOCAL), so workers do not mix them up.
   int width = 0, height = 0, channels = 0;
-  if (!bytes || size <= 0 || !stbi_info_from_memory(bytes, size, &width, &height, &channels))
-    return fail(fmt::format("image {} cannot be decoded ({})", imageIndex,
-                            stbi_failure_reason() ? stbi_failure_reason() : "not PNG or JPEG"));
+  if (size <= 0 || !stbi_info_from_memory(bytes, size, &width, &height, &channels))
+    return fmt::format("image {} cannot be decoded ({})", index,
+                       stbi_failure_reason() ? stbi_failure_reason() : "not PNG or JPEG");
   if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide ||
       uint64_t(width) * uint64_t(height) > kMaxImagePixels)
-    return fail(fmt::format("image {} is {}x{}, larger than Rayster accepts ({} per side)", imageIndex, width, height,
-                            kMaxImageSide));
+    return fmt::format("image {} is {}x{}, larger than Rayster accepts ({} per side)", index, width, height,
+                       kMaxImageSide);
   if (const std::string hazard = stbDecodeHazard(bytes, size_t(size)); !hazard.empty())
-    return fail(fmt::format("image {} cannot be decoded ({})", imageIndex, hazard));
+    return fmt::format("image {} cannot be decoded ({})", index, hazard);
   stbi_uc* pixels = stbi_load_from_memory(bytes, size, &width, &height, &channels, 4);
   if (!pixels)
-    return fail(fmt::format("image {} cannot be decoded ({})", imageIndex,
-                            stbi_failure_reason() ? stbi_failure_reason() : "unknown error"));
+    return fmt::format("image {} cannot be decoded ({})", index,
+                       stbi_failure_reason() ? stbi_failure_reason() : "unknown error");
   fill(width, height, pixels);
   stbi_image_free(pixels);
-  return true;
+  return {};
+}
+
+}  // namespace
+
+bool decodeImages(tinygltf::Model& model, const std::string& file, ImageDecodeState& state) {
+  std::vector<ImageDecodeState::Encoded> pending = std::move(state.pending);
+  state.pending.clear();
+  if (pending.empty()) return state.error.empty();
+  std::vector<std::string> errors(pending.size()), ktxErrors(pending.size());
+  LoadProgress progress("loading " + file, "textures decoded", pending.size());
+  parallelFor(pending.size(), [&](size_t k) {
+    const size_t index = pending[k].image;
+    // tinygltf stops at a failing image, so an image past it may not be in the model (yet).
+    // An exception must not leave a worker thread (std::terminate); it reads as it did when it
+    // came out of tinygltf's callback (parse() catches those).
+    try {
+      if (index < model.images.size())
+        errors[k] = decodeOne(model.images[index], index, pending[k].bytes, ktxErrors[k]);
+    } catch (const std::exception& e) {
+      errors[k] = "invalid glTF: " + oneLine(e.what());
+    }
+    std::vector<uint8_t>().swap(pending[k].bytes);  // the encoded copy is done with
+    progress.advance();
+  });
+  progress.finish();
+  state.ktxError.resize(std::max(state.ktxError.size(), state.imageMaterial.size()));
+  for (size_t k = 0; k < pending.size(); ++k) {
+    if (!ktxErrors[k].empty() && pending[k].image < state.ktxError.size())
+      state.ktxError[pending[k].image] = ktxErrors[k];
+    if (!errors[k].empty() && state.error.empty()) state.error = errors[k];  // pending is in image order
+  }
+  return state.error.empty();
 }
 
 // The images materials show, into scene.images; imageMap[glTF image] is the scene image, or -1
 // for one no material shows (skipped, with a warning when it is missing: it may be a mistake).
-Result<std::vector<int32_t>> convertImages(const tinygltf::Model& model, const std::string& file,
+Result<std::vector<int32_t>> convertImages(tinygltf::Model& model, const std::string& file,
                                            const ImageDecodeState& images, Scene& scene) {
   std::vector<int32_t> imageMap(model.images.size(), -1);
   for (size_t i = 0; i < model.images.size(); ++i) {
-    const tinygltf::Image& src = model.images[i];
+    tinygltf::Image& src = model.images[i];
     const int material = i < images.imageMaterial.size() ? images.imageMaterial[i] : -1;
     if (material < 0) {
       if (i < images.reached.size() && !images.reached[i])
@@ -313,8 +358,7 @@ Result<int> textureSource(const tinygltf::Model& model, size_t index, const Imag
   return kNotShown;
 }
 
-Status convertMaterials(const tinygltf::Model& model, const std::string& file, const ImageDecodeState& images,
-                        Scene& scene) {
+Status convertMaterials(tinygltf::Model& model, const std::string& file, const ImageDecodeState& images, Scene& scene) {
   Result<std::vector<int32_t>> imageMap = convertImages(model, file, images, scene);
   if (!imageMap) return imageMap.error();
   for (const tinygltf::Sampler& s : model.samplers) scene.samplers.push_back(convertSampler(s));

@@ -4,11 +4,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build-release -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYSTER_BUILD_TESTS=OFF >/dev/null
-ninja -C build-release rayster
+ninja -C build-release rayster rayster-make-scene
 out=dist/rayster-gpu
 rm -rf "$out"
 mkdir -p "$out/lib"
-cp build-release/rayster "$out/"
+cp build-release/rayster build-release/rayster-make-scene "$out/"
 # Every library the binary links, except the C/C++ runtime the target has (newer than Debian 12's),
 # plus what is loaded at run time: the Vulkan loader (volk dlopens it) and glvnd's dispatch
 # libraries, which NVIDIA's Vulkan driver (libGLX_nvidia) needs to load.
@@ -35,5 +35,13 @@ export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
 exec "$here/rayster" "$@"
 RUN
 chmod +x "$out/run.sh"
+# The load-time benchmark's scene generator (bench/make_big_scene.cpp, bench/gpu-load.sh).
+cat >"$out/make-scene.sh" <<'RUN'
+#!/bin/sh
+here=$(cd "$(dirname "$0")" && pwd)
+export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+exec "$here/rayster-make-scene" "$@"
+RUN
+chmod +x "$out/make-scene.sh"
 du -sh "$out"
 echo "bundle-gpu: $out ready; run it as $out/run.sh render ..."

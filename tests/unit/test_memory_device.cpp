@@ -14,6 +14,7 @@
 #include "rhi/context.h"
 #include "rhi/memory.h"
 #include "rhi/resources.h"
+#include "rhi/upload.h"
 
 namespace rayster::rhi {
 namespace {
@@ -237,6 +238,41 @@ TEST_F(MemoryDevice, LargeRoundTripThroughDedicatedMemory) {
   EXPECT_TRUE(std::memcmp(out.data(), bytes.data(), bytes.size()) == 0);
   flush();
   EXPECT_EQ(stats().dedicatedCount, dedicatedBefore);
+}
+
+// rhi::UploadBatch: many buffers through shared staging chunks (one larger than a chunk, so it
+// gets its own), read back by a submission made after the batch's without any host wait between
+// them: the batch's closing barrier must order its copies first (validation, with synchronization
+// checks, is on in this fixture).
+TEST_F(MemoryDevice, UploadBatchRoundTripsAcrossChunksWithoutAHostWait) {
+  std::vector<std::vector<std::byte>> inputs;
+  for (size_t i = 0; i < 60; ++i) inputs.emplace_back(i % 3 == 0 ? 5 : i % 3 == 1 ? 1000 : 5 * 1024 * 1024 + 3);
+  inputs.emplace_back(size_t(65) << 20);  // larger than a 64 MiB chunk
+  for (size_t b = 0; b < inputs.size(); ++b)
+    for (size_t i = 0; i < inputs[b].size(); ++i) inputs[b][i] = std::byte(uint8_t(i * 131 + b * 7 + (i >> 10)));
+  std::vector<Buffer> gpu;
+  UploadBatch batch(*ctx_);
+  for (const auto& bytes : inputs)
+    gpu.push_back(batch.buffer(bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "batch"));
+  batch.submit();
+  EXPECT_GE(batch.submissions(), 3u);
+  std::vector<Buffer> readback;
+  {
+    OneShot cmd(*ctx_);
+    for (size_t b = 0; b < inputs.size(); ++b) {
+      readback.emplace_back(*ctx_, inputs[b].size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "rb");
+      VkBufferCopy region{0, 0, inputs[b].size()};
+      vkCmdCopyBuffer(cmd, gpu[b].handle(), readback.back().handle(), 1, &region);
+    }
+    cmd.submitAndWait();
+  }
+  for (size_t b = 0; b < inputs.size(); ++b)
+    EXPECT_TRUE(std::memcmp(readback[b].mapped(), inputs[b].data(), inputs[b].size()) == 0) << "buffer " << b;
+  batch.wait();
+  EXPECT_EQ(ctx_->validationErrors(), 0u);
+  gpu.clear();
+  readback.clear();
+  flush();
 }
 
 }  // namespace
