@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/image.h"
 #include "core/image_io.h"
@@ -164,6 +165,17 @@ inline void writeGltf(const std::filesystem::path& dir, const std::string& name,
       layers.replace(at, 4, std::to_string(textureIndex(mat.layerTexture)));
     extensions += ", " + layers;
   }
+  // A textured material needs the UVs its textures read (glTF: MESH_PRIMITIVE_TOO_FEW_TEXCOORDS is an
+  // error): planar ones from x and y, appended to the buffer and added to the JSON below.
+  size_t uvOffset = 0;
+  if (!images.empty()) {
+    while (buf.size() % 4) buf.push_back(0);
+    uvOffset = buf.size();
+    std::vector<float> uvs;
+    for (size_t i = 0; i < vertices; ++i)
+      uvs.insert(uvs.end(), {mesh.positions[3 * i] + 0.5f, 0.5f - mesh.positions[3 * i + 1]});
+    appendBytes(buf, uvs);
+  }
   std::string textures;
   if (!images.empty()) {
     std::string imageList, textureList;
@@ -209,6 +221,14 @@ inline void writeGltf(const std::filesystem::path& dir, const std::string& name,
       name, vec3Json(emissiveFactor), mat.baseColor.x, mat.baseColor.y, mat.baseColor.z, mat.metallic, mat.roughness,
       extensions, buf.size(), base64(buf), vertexBytes, 2 * vertexBytes, mesh.indices.size() * 4, vertices,
       vec3Json(lo), vec3Json(hi), mesh.indices.size(), colorAttribute, colorParts, colorView, alpha, textures);
+  if (!images.empty()) {
+    nlohmann::json j = nlohmann::json::parse(json);
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", uvOffset}, {"byteLength", vertices * 8}});
+    j["accessors"].push_back(
+        {{"bufferView", j["bufferViews"].size() - 1}, {"componentType", 5126}, {"count", vertices}, {"type", "VEC2"}});
+    j["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = j["accessors"].size() - 1;
+    json = j.dump(1);
+  }
   std::ofstream(dir / (name + ".gltf")) << json;
 }
 
