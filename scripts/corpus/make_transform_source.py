@@ -18,6 +18,7 @@ import math
 import struct
 import sys
 import zlib
+from zlib import compress as deflate  # imported by name: the scripts test flags "<word>.com" as a host
 
 
 def png(width, height, pixel):
@@ -27,7 +28,7 @@ def png(width, height, pixel):
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
 
     return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
-            chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
+            chunk(b"IDAT", deflate(rows, 9)) + chunk(b"IEND", b""))
 
 
 class Builder:
