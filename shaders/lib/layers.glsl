@@ -98,22 +98,6 @@ float smithLambdaAniso(vec3 w, float at, float ab) {
   float z2 = max(w.z * w.z, 1e-12);
   return 0.5 * (-1.0 + sqrt(1.0 + (at * at * w.x * w.x + ab * ab * w.y * w.y) / z2));
 }
-// sampleGgxVndf() with α stretched per axis (Heitz 2018 handles anisotropy by the same stretch).
-vec3 sampleGgxVndfAniso(vec3 v, float at, float ab, vec2 u) {
-  vec3 vh = normalize(vec3(at * v.x, ab * v.y, v.z));
-  float lensq = vh.x * vh.x + vh.y * vh.y;
-  vec3 t1 = lensq > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(lensq) : vec3(1.0, 0.0, 0.0);
-  vec3 t2 = cross(vh, t1);
-  float r = sqrt(u.x);
-  float phi = 2.0 * kPi * u.y;
-  float p1 = r * cos(phi);
-  float p2 = r * sin(phi);
-  float s = 0.5 * (1.0 + vh.z);
-  p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * p2;
-  vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
-  return normalize(vec3(at * nh.x, ab * nh.y, max(1e-7, nh.z)));
-}
-
 // The thin film's spectral response, integrated against the CIE matching functions in Fourier space
 // with the Gaussian fits of Belcour and Barla (2017, §4), to linear Rec. 709.
 vec3 filmSensitivity(float opd, vec3 shift) {

@@ -27,10 +27,11 @@ using std::sqrt;
 
 RAYSTER_CONST float kVndfPi = 3.14159265358979f;
 
-// A microfacet normal H distributed as D_V(H) = G1(V)·max(0, V·H)·D(H) / V.z, from u in [0,1)².
-RAYSTER_FN vec3 sampleGgxVndf(vec3 v, float alpha, vec2 u) {
+// A microfacet normal H distributed as D_V(H) = G1(V)·max(0, V·H)·D(H) / V.z, from u in [0,1)², for
+// GGX with α `ax` along the tangent frame's x and `ay` along its y (anisotropic: stretched the same way).
+RAYSTER_FN vec3 sampleGgxVndfAniso(vec3 v, float ax, float ay, vec2 u) {
   // Stretch V so the GGX lobe becomes the hemisphere of a unit-roughness configuration.
-  vec3 vh = normalize(vec3(alpha * v.x, alpha * v.y, v.z));
+  vec3 vh = normalize(vec3(ax * v.x, ay * v.y, v.z));
   float lensq = vh.x * vh.x + vh.y * vh.y;
   vec3 t1 = lensq > 0.0f ? vec3(-vh.y, vh.x, 0.0f) * inversesqrt(lensq) : vec3(1.0f, 0.0f, 0.0f);
   vec3 t2 = cross(vh, t1);
@@ -43,8 +44,9 @@ RAYSTER_FN vec3 sampleGgxVndf(vec3 v, float alpha, vec2 u) {
   p2 = (1.0f - s) * sqrt(max(0.0f, 1.0f - p1 * p1)) + s * p2;
   vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
   // Unstretch; the floor on z keeps α = 0 (exactly the mirror normal) free of 0/0.
-  return normalize(vec3(alpha * nh.x, alpha * nh.y, max(1e-7f, nh.z)));
+  return normalize(vec3(ax * nh.x, ay * nh.y, max(1e-7f, nh.z)));
 }
+RAYSTER_FN vec3 sampleGgxVndf(vec3 v, float alpha, vec2 u) { return sampleGgxVndfAniso(v, alpha, alpha, u); }
 
 // Isotropic GGX normal distribution D(H) for cosθ_H = nh.
 RAYSTER_FN float ggxDistribution(float nh, float alpha) {
