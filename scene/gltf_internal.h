@@ -164,6 +164,20 @@ TextureRef extensionTexture(const MaterialContext& ctx, const tinygltf::Value& e
 const tinygltf::Value* extension(const tinygltf::ExtensionMap& extensions, const char* name);
 // A finite float from a number, else `fallback`.
 float finiteOr(double value, float fallback);
+// An array of N numbers from a tinygltf Value, `fallback` when absent or of another length (and
+// per element where one is not a finite number).
+template <int N>
+glm::vec<N, float> valueVectorOr(const tinygltf::Value& object, const char* key, glm::vec<N, float> fallback) {
+  if (!object.IsObject() || !object.Has(key)) return fallback;
+  const tinygltf::Value& array = object.Get(key);
+  if (!array.IsArray() || array.ArrayLen() != size_t(N)) return fallback;
+  glm::vec<N, float> v;
+  for (int i = 0; i < N; ++i) {
+    const tinygltf::Value& e = array.Get(i);
+    v[i] = e.IsNumber() ? finiteOr(e.GetNumberAsDouble(), fallback[i]) : fallback[i];
+  }
+  return v;
+}
 
 // ---- gltf_material_layers.cpp: the KHR_materials_* layers and KHR_materials_variants ----
 

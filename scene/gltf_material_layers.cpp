@@ -16,13 +16,7 @@ float number01(const tinygltf::Value& ext, const char* key, float fallback) {
 }
 
 glm::vec3 color(const tinygltf::Value& ext, const char* key, glm::vec3 fallback) {
-  if (!ext.Has(key) || !ext.Get(key).IsArray() || ext.Get(key).ArrayLen() != 3) return fallback;
-  const tinygltf::Value& a = ext.Get(key);
-  glm::vec3 c;
-  for (int i = 0; i < 3; ++i)
-    c[i] =
-        a.Get(i).IsNumber() ? std::clamp(finiteOr(a.Get(i).GetNumberAsDouble(), fallback[i]), 0.0f, 1.0f) : fallback[i];
-  return c;
+  return glm::clamp(valueVectorOr<3>(ext, key, fallback), glm::vec3(0.0f), glm::vec3(1.0f));
 }
 
 }  // namespace

@@ -28,19 +28,6 @@ glm::vec<N, float> vectorOr(const std::vector<double>& values, glm::vec<N, float
   return v;
 }
 
-template <int N>
-glm::vec<N, float> valueVectorOr(const tinygltf::Value& object, const char* key, glm::vec<N, float> fallback) {
-  if (!object.IsObject() || !object.Has(key)) return fallback;
-  const tinygltf::Value& array = object.Get(key);
-  if (!array.IsArray() || array.ArrayLen() != size_t(N)) return fallback;
-  glm::vec<N, float> v;
-  for (int i = 0; i < N; ++i) {
-    const tinygltf::Value& e = array.Get(i);
-    v[i] = e.IsNumber() ? finiteOr(e.GetNumberAsDouble(), fallback[i]) : fallback[i];
-  }
-  return v;
-}
-
 Sampler convertSampler(const tinygltf::Sampler& src) {
   auto wrap = [](int mode) {
     switch (mode) {
