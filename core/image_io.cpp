@@ -18,13 +18,7 @@
 #include <system_error>
 #include <vector>
 
-#define STB_IMAGE_IMPLEMENTATION
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-// The one stb_image instance in the program: scene loaders decode glTF/OBJ textures (PNG, JPEG)
-// through it too. Other decoders stay out: smaller binary, less attack surface for untrusted files.
-#define STBI_ONLY_PNG
-#define STBI_ONLY_JPEG
-#define STBI_ONLY_HDR
+// stb_image's implementation is core/stb_impl.cpp.
 #include <stb_image.h>
 #include <stb_image_write.h>
 #include <tinyexr.h>
@@ -221,10 +215,15 @@ Status writeHdr(const fs::path& path, const ImageF& image) {
 }  // namespace
 
 std::string stbDecodeHazard(const uint8_t* d, size_t n) {
-  if (n < 4 || d[0] != 0xFF || d[1] != 0xD8) return {};  // only JPEG has the problem
+  // Only JPEG has the problem. stb takes any run of 0xFF fill bytes before the SOI marker (as
+  // before every marker), so a file may start 0xFF 0xFF ... 0xD8.
+  if (n < 4 || d[0] != 0xFF) return {};
+  size_t i = 1;
+  while (i < n && d[i] == 0xFF) ++i;
+  if (i >= n || d[i] != 0xD8) return {};
+  ++i;
   // Walk the markers; inside entropy-coded data only 0xFF 0x00 (a stuffed byte), RSTn and fill
   // bytes follow an 0xFF, so a byte-wise scan for the next marker is enough.
-  size_t i = 2;
   while (i + 4 <= n) {
     if (d[i] != 0xFF || d[i + 1] == 0xFF) {
       ++i;

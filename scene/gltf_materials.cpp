@@ -233,6 +233,9 @@ std::string decodeOne(tinygltf::Image& image, size_t index, const std::vector<ui
     return {};
   }
   // stb_image's failure reason is thread-local (STBI_THREAD_LOCAL), so workers do not mix them up.
+  // The hazard check comes first: stb's header parse (stbi_info) already reads the Huffman tables.
+  if (const std::string hazard = stbDecodeHazard(bytes, size_t(std::max(size, 0))); !hazard.empty())
+    return fmt::format("image {} cannot be decoded ({})", index, hazard);
   int width = 0, height = 0, channels = 0;
   if (size <= 0 || !stbi_info_from_memory(bytes, size, &width, &height, &channels))
     return fmt::format("image {} cannot be decoded ({})", index,
@@ -241,8 +244,6 @@ std::string decodeOne(tinygltf::Image& image, size_t index, const std::vector<ui
       uint64_t(width) * uint64_t(height) > kMaxImagePixels)
     return fmt::format("image {} is {}x{}, larger than Rayster accepts ({} per side)", index, width, height,
                        kMaxImageSide);
-  if (const std::string hazard = stbDecodeHazard(bytes, size_t(size)); !hazard.empty())
-    return fmt::format("image {} cannot be decoded ({})", index, hazard);
   stbi_uc* pixels = stbi_load_from_memory(bytes, size, &width, &height, &channels, 4);
   if (!pixels)
     return fmt::format("image {} cannot be decoded ({})", index,

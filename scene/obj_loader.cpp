@@ -228,6 +228,11 @@ class TextureLoader {
       log::warn("{}: {} '{}' not found or unreadable, rendering without it", file_, what, ref);
       return -1;
     }
+    // The hazard check comes first: stb's header parse (stbi_info) already reads the Huffman tables.
+    if (const std::string hazard = stbDecodeHazard(bytes.data(), bytes.size()); !hazard.empty()) {
+      log::warn("{}: {} '{}' cannot be decoded ({}), rendering without it", file_, what, ref, hazard);
+      return -1;
+    }
     int w = 0, h = 0, channels = 0;
     const int size = static_cast<int>(bytes.size());
     if (!stbi_info_from_memory(bytes.data(), size, &w, &h, &channels)) {
@@ -238,10 +243,6 @@ class TextureLoader {
     if (w <= 0 || h <= 0 || w > kMaxTextureSide || h > kMaxTextureSide)
       return makeError(ExitCode::BadInput, "{}: {} '{}' is {}x{}, more than the {} pixels per side Rayster accepts",
                        file_, what, ref, w, h, kMaxTextureSide);
-    if (const std::string hazard = stbDecodeHazard(bytes.data(), bytes.size()); !hazard.empty()) {
-      log::warn("{}: {} '{}' cannot be decoded ({}), rendering without it", file_, what, ref, hazard);
-      return -1;
-    }
     uint8_t* pixels = stbi_load_from_memory(bytes.data(), size, &w, &h, &channels, 4);
     if (!pixels) {
       log::warn("{}: {} '{}' cannot be decoded ({}), rendering without it", file_, what, ref,

@@ -248,8 +248,15 @@ Status readEnvironmentMap(const Reader& r, const std::string& ref, const std::st
   std::error_code ec;
   RAYSTER_TRY(r.require(fs::is_regular_file(*file, ec), path, fmt::format("'{}': no such file", ref)));
   // Refuse absurd sizes from the header, before decoding allocates them.
+  // Only a file that starts as Radiance HDR does ("#?") is handed to stbi_info: it would try any
+  // other bytes as JPEG first, before the reader's stbDecodeHazard() check has seen them.
   int w = 0, h = 0, channels = 0;
-  if (ext == ".hdr" && stbi_info(file->c_str(), &w, &h, &channels))
+  const bool radiance = [&] {
+    char magic[2] = {};
+    std::ifstream(*file, std::ios::binary).read(magic, 2);
+    return magic[0] == '#' && magic[1] == '?';
+  }();
+  if (ext == ".hdr" && radiance && stbi_info(file->c_str(), &w, &h, &channels))
     RAYSTER_TRY(r.require(w <= kMaxEnvironmentSide && h <= kMaxEnvironmentSide, path,
                           fmt::format("'{}' is {}x{}, more than {} pixels per side", ref, w, h, kMaxEnvironmentSide)));
   Result<ImageF> image = readImageLinear(*file);
