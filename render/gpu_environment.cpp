@@ -11,6 +11,7 @@
 #include "rhi/context.h"
 #include "rhi/resources.h"
 #include "rhi/upload.h"
+#include "shaders/shared/sheen.h"
 #include "shaders/shared/types.h"
 
 namespace rayster::render {
@@ -259,6 +260,13 @@ void uploadDfgTable(rhi::Context& ctx, GpuScene& gs) {
   gs.samplers.emplace_back(ctx, VK_FILTER_LINEAR, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
                            VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false);
   gs.dfgSlot = gs.bindless->add(gs.dfgTable.view(), gs.samplers.back().handle());
+  // The sheen albedo table (shaders/shared/sheen.h) beside it, with the same linear clamped sampler:
+  // its filter is the table's bilinear interpolation.
+  std::vector<uint16_t> sheen;
+  for (float e : gpu::kSheenAlbedo) sheen.push_back(floatToHalf(e));
+  gs.sheenTable = rhi::uploadImage(ctx, {VK_FORMAT_R16_SFLOAT, gpu::kSheenTableSize, gpu::kSheenTableSize, 1, 0},
+                                   std::as_bytes(std::span(sheen)), false, "sheen-albedo-table");
+  gs.sheenSlot = gs.bindless->add(gs.sheenTable.view(), gs.samplers.back().handle());
 }
 
 }  // namespace rayster::render

@@ -80,27 +80,29 @@ SpecularSurfaces specularSurfaces(const scene::Scene& scene) {
 }
 
 std::string layersApproximated(const scene::Scene& scene) {
-  bool coat = false, sheen = false, film = false, aniso = false, dispersion = false;
+  bool coat = false, film = false, aniso = false, dispersion = false;
   for (const scene::Material& m : scene.materials) {
     if (m.unlit) continue;
     coat = coat || m.hasClearcoat();
-    sheen = sheen || m.hasSheen();
     film = film || m.hasIridescence();
     aniso = aniso || m.hasAnisotropy();
     dispersion = dispersion || (m.dispersion > 0.0f && m.transmission > 0.0f);
   }
+  // Clear coat and sheen are shaded (lib/shading.glsl); only the coat's reflection is approximated.
   std::string names;
   auto add = [&](bool on, const char* name) {
     if (on) names += (names.empty() ? "" : ", ") + std::string(name);
   };
-  add(coat, "clearcoat");
-  add(sheen, "sheen");
   add(film, "iridescence");
   add(aniso, "anisotropy");
   add(dispersion, "dispersion");
-  if (names.empty()) return {};
-  return "scene '" + scene.name + "': the hybrid and raster modes render its materials' " + names +
-         " as the base layer alone (isotropic, no coat, sheen or film, one η); --mode pathtrace renders them";
+  std::string said;
+  if (!names.empty()) said = "render its materials' " + names + " as the base layer alone (no film, isotropic, one η)";
+  if (coat)
+    said += std::string(said.empty() ? "" : " and ") +
+            "reflect only the environment (or the GI probes) in its clear coats, no traced rays";
+  if (said.empty()) return {};
+  return "scene '" + scene.name + "': the hybrid and raster modes " + said + "; --mode pathtrace renders them exactly";
 }
 
 void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs, rhi::UploadBatch& batch) {

@@ -59,8 +59,10 @@ struct GpuScene {
   float emissiveArea = 0.0f;
   rhi::Image environmentPrefiltered;  // built once at upload; glossy environment light of the raster mode
   GpuEnvironment environment;
-  rhi::Image dfgTable;             // split-sum DFG (render/dfg.h), RG16F
-  uint32_t dfgSlot = 0xFFFFFFFFu;  // its bindless slot
+  rhi::Image dfgTable;               // split-sum DFG (render/dfg.h), RG16F
+  uint32_t dfgSlot = 0xFFFFFFFFu;    // its bindless slot
+  rhi::Image sheenTable;             // the sheen's directional albedo (shaders/shared/sheen.h), R16F
+  uint32_t sheenSlot = 0xFFFFFFFFu;  // its bindless slot
   // Built only on devices with ray tracing (rhi::Capabilities::rayTracing()); empty otherwise.
   std::vector<rhi::AccelerationStructure> blases;
   rhi::Tlas tlas;
@@ -118,7 +120,8 @@ void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& g
 // mesh's first GeometryRecord row.
 void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene,
                              const std::vector<uint32_t>& meshFirstGeometry, GpuScene& gs);
-// The split-sum DFG table of glossy reflections, into the bindless array (render/gpu_environment.cpp).
+// The split-sum DFG table of glossy reflections and the sheen albedo table, into the bindless array
+// (render/gpu_environment.cpp).
 void uploadDfgTable(rhi::Context& ctx, GpuScene& gs);
 // Uploads RGBA8 pixels to a sampled image with a full mip chain (render/gpu_materials.cpp).
 rhi::Image uploadTexture(rhi::Context& ctx, const scene::ImageData& image);

@@ -16,6 +16,9 @@ inline constexpr VkFormat kMaterialFormat = VK_FORMAT_R8G8B8A8_UNORM;
 inline constexpr VkFormat kEmissiveFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kSpecularFormat = VK_FORMAT_R8G8B8A8_UNORM;  // encodeSpecular(): 8 bits keep ~1 % steps
 inline constexpr VkFormat kIdFormat = VK_FORMAT_R32_UINT;
+// encodeLayers() (lib/common.glsl): clear coat and sheen, packed; 32 bits a word keep the coat normal
+// at 16 bits per axis within the eight colour attachments every device has.
+inline constexpr VkFormat kLayersFormat = VK_FORMAT_R32G32B32A32_UINT;
 inline constexpr VkFormat kMotionFormat = VK_FORMAT_R16G16_SFLOAT;  // uvCurrent − uvPrevious
 inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;

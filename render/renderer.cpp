@@ -157,6 +157,7 @@ glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::C
       (s.mode != Mode::Raster && indirectOn(s) && passSettingText(s, "gi") == "probes" ? gpu::kEffectIndirectSpecular
                                                                                        : 0u);
   fc.dfgSlot = gpu.dfgSlot;
+  fc.sheenSlot = gpu.sheenSlot;
   fc.emissiveTriangles = gpu.emissiveTriangles.address();
   fc.environmentCdf = gpu.environmentCdf.address();
   fc.emissiveTriangleCount = gpu.emissiveTriangleCount;

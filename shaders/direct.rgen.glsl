@@ -33,6 +33,7 @@ layout(set = 0, binding = 5) uniform sampler2D materialTex;
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D outDirect;
 layout(set = 0, binding = 7) uniform sampler2D emissiveTex;      // .a: the exact ior
 layout(set = 0, binding = 8) uniform sampler2D specularGbufTex;  // encodeSpecular(): F0 tint, strength
+layout(set = 0, binding = 9) uniform usampler2D layersTex;        // encodeLayers(): clear coat and sheen
 #endif
 
 layout(location = 0) rayPayloadEXT uint visible;
@@ -124,6 +125,9 @@ void main() {
   s.highlightWiden = 0.0;
   s.indirectSpecular = vec3(0.0);
   s.indirect = vec3(0.0);
+  vec4 coat, sheen;
+  decodeLayers(texelFetch(layersTex, px, 0), coat, sheen);
+  setLayers(s, coat, sheen);
   uint rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kShadowStream);
   vec3 direct = shadeDirect(s, shadingTerms(s), rng);
   // A bright but finite clamp: a rare pick of a weak light far away must not become a firefly NaN.

@@ -33,6 +33,7 @@ layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D outEmissive;
 layout(set = 0, binding = 7, r32ui) uniform writeonly uimage2D outId;
 layout(set = 0, binding = 8, rg16f) uniform writeonly image2D outMotion;
 layout(set = 0, binding = 9, rgba8) uniform writeonly image2D outSpecular;
+layout(set = 0, binding = 10, rgba32ui) uniform writeonly uimage2D outLayers;
 
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
 #endif
@@ -73,6 +74,7 @@ void main() {
     imageStore(outId, px, uvec4(kBackgroundId));
     imageStore(outMotion, px, vec4(0.0));
     imageStore(outSpecular, px, vec4(0.0));
+    imageStore(outLayers, px, uvec4(0u));
     return;
   }
 
@@ -89,6 +91,7 @@ void main() {
   imageStore(outMaterial, px, gb.material);
   imageStore(outEmissive, px, gb.emissive);
   imageStore(outSpecular, px, encodeSpecular(gb.specular));
+  imageStore(outLayers, px, encodeLayers(gb.coat, gb.sheen));
   imageStore(outId, px, uvec4(payload.instance));
   InstanceRecord inst = Instances(frame.instances).i[payload.instance];
   GeometryRecord g = Geometries(frame.geometries).g[payload.geometry];

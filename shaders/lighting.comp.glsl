@@ -12,7 +12,8 @@
 // ray-traced shadow visibility (or, with many lights, the stochastic direct light of direct.rgen),
 // ray-traced AO (ambient and environment light only) and one-bounce indirect diffuse irradiance,
 // plus the traced specular light of mirrors, glossy surfaces and glass (opaque surfaces:
-// demodulated lobe-average radiance, × F0·A + B here, docs/techniques.md §13).
+// demodulated lobe-average radiance, × F0·A + B here, docs/techniques.md §13), under the clear coat
+// and sheen where the material has them (lib/shading.glsl).
 // Output: linear HDR radiance (RGBA16F).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 1) uniform sampler2D depthTex;
@@ -28,6 +29,7 @@ layout(set = 0, binding = 10) uniform sampler2D indirectTex;  // rgb: irradiance
 layout(set = 0, binding = 11) uniform sampler2D directTex;  // many-light mode: stochastic direct light
 layout(set = 0, binding = 12) uniform sampler2D specularGbufTex;  // encodeSpecular(): F0 tint, strength
 layout(set = 0, binding = 13) uniform sampler2D indirectSpecularTex;  // kEffectIndirectSpecular: E about r
+layout(set = 0, binding = 14) uniform usampler2D layersTex;  // encodeLayers(): clear coat and sheen
 
 ivec2 gPixel;
 
@@ -87,6 +89,9 @@ void main() {
   s.highlightWiden = s.tracedWeight > 0.0 ? normalSpread(px, s.n) : 0.0;  // used for the traced share only
   s.useIndirectSpecular = (frame.effectFlags & kEffectIndirectSpecular) != 0u;
   s.indirectSpecular = s.useIndirectSpecular ? texelFetch(indirectSpecularTex, px, 0).rgb : vec3(0.0);
+  vec4 coat, sheen;
+  decodeLayers(texelFetch(layersTex, px, 0), coat, sheen);
+  setLayers(s, coat, sheen);
   uint rng = 0u;  // visibility comes from the shadow image: no random numbers needed here
   vec3 traced = texelFetch(specularTex, px, 0).rgb;
   // Glass writes radiance; opaque surfaces the lobe average, remodulated by the lobe's albedo.
@@ -95,7 +100,7 @@ void main() {
     traced *= specularAlbedo(bsdf.f0, bsdf.f90, max(dot(s.n, s.v), 1e-4), s.roughness);
   }
   bool many = frame.manyLights != 0u;
-  vec3 radiance = shadeSurface(s, !many, rng) + s.tracedWeight * traced;
+  vec3 radiance = shadeSurface(s, !many, rng) + s.tracedWeight * underLayers(s) * traced;
   if (many) radiance += texelFetch(directTex, px, 0).rgb;
   imageStore(outColor, px, vec4(radiance, 1.0));
 }

@@ -183,6 +183,7 @@ void main() {
     s.highlightWiden = 0.0;
     s.useIndirectSpecular = s.useIndirect && !tracedSpecular(s.roughness, s.transmission);
     s.indirect = s.indirectSpecular = vec3(0.0);
+    setLayers(s, gb.coat, gb.sheen);
     if (s.useIndirect)
       probeIrradiance2(grid, s.p, s.n, s.v, s.useIndirectSpecular, reflect(-s.v, s.n), s.indirect, s.indirectSpecular);
     // A glossy lobe averages its hits over frames and pixels anyway: there one light picked by

@@ -34,12 +34,14 @@ GBuffer createGBufferTargets(graph::RenderGraph& graph, VkExtent2D size, bool tr
   gb.id = target("gbuffer-id", kIdFormat);
   gb.motion = target("gbuffer-motion", kMotionFormat);
   gb.specular = target("gbuffer-specular", kSpecularFormat);
+  gb.layers = target("gbuffer-layers", kLayersFormat);
   return gb;
 }
 
 void bindSurface(graph::PassBuilder& b, const GBuffer& gb) {
   b.bind("depthTex", gb.depth).bind("normalTex", gb.normals).bind("albedoTex", gb.albedo);
   b.bind("materialTex", gb.material).bind("emissiveTex", gb.emissive).bind("specularGbufTex", gb.specular);
+  b.bind("layersTex", gb.layers);
 }
 
 namespace {
@@ -54,7 +56,7 @@ void drawGBuffer(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer
     g.vertex = spheres ? "gbuffer_sphere.vert" : "gbuffer.vert";
     g.fragment = spheres ? "gbuffer_sphere.frag" : "gbuffer.frag";
     g.colorFormats = {kNormalFormat, kAlbedoFormat, kMaterialFormat, kEmissiveFormat,
-                      kIdFormat,     kMotionFormat, kSpecularFormat};
+                      kIdFormat,     kMotionFormat, kSpecularFormat, kLayersFormat};
     g.depthFormat = kDepthFormat;
     return g;
   };
@@ -64,7 +66,7 @@ void drawGBuffer(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer
       late ? "gbuffer-raster-late" : "gbuffer-raster",
       [&](graph::PassBuilder& b) {
         b.write(gb.depth, graph::Use::DepthAttachment);
-        for (auto h : {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion, gb.specular})
+        for (auto h : {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion, gb.specular, gb.layers})
           b.write(h, graph::Use::ColorAttachment);
         b.read(culled.commands, graph::Use::IndirectRead);
         b.read(culled.counts, graph::Use::IndirectRead);
@@ -72,10 +74,10 @@ void drawGBuffer(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer
       },
       [gb, culled, late, triangles, spheres, &in](graph::PassContext& pc) {
         const VkAttachmentLoadOp load = late ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-        constexpr int kTargets = 7;  // in the order of the fragment outputs (lib/gbuffer_out.glsl)
+        constexpr int kTargets = 8;  // in the order of the fragment outputs (lib/gbuffer_out.glsl)
         VkRenderingAttachmentInfo color[kTargets];
         graph::ImageHandle targets[kTargets] = {gb.normals, gb.albedo, gb.material, gb.emissive,
-                                                gb.id,      gb.motion, gb.specular};
+                                                gb.id,      gb.motion, gb.specular, gb.layers};
         for (int i = 0; i < kTargets; ++i) {
           color[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
           color[i].imageView = pc.image(targets[i]).view();

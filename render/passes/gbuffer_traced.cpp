@@ -21,7 +21,7 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
         b.pipeline(pipe).bind("tlas", in.tlas);
         b.bind("outDepth", gb.depth).bind("outNormals", gb.normals).bind("outAlbedo", gb.albedo);
         b.bind("outMaterial", gb.material).bind("outEmissive", gb.emissive).bind("outId", gb.id);
-        b.bind("outMotion", gb.motion).bind("outSpecular", gb.specular);
+        b.bind("outMotion", gb.motion).bind("outSpecular", gb.specular).bind("outLayers", gb.layers);
         b.rays(uint64_t(in.size.width) * in.size.height, true);  // one primary ray per pixel, always traced
       },
       [&pipe, size = in.size](graph::PassContext& pc) { pipe.trace(pc.cmd, size.width, size.height); });

@@ -48,7 +48,7 @@ void updateTlas(graph::RenderGraph& graph, const FrameInputs& in, bool refit);
 
 struct GBuffer;
 // Binds the G-buffer images a shading pass reads under their usual GLSL names (depthTex, normalTex,
-// albedoTex, materialTex, emissiveTex, specularGbufTex).
+// albedoTex, materialTex, emissiveTex, specularGbufTex, layersTex).
 void bindSurface(graph::PassBuilder& b, const GBuffer& gb);
 
 struct GBuffer {
@@ -60,6 +60,9 @@ struct GBuffer {
   // RGBA8: the dielectric lobe of KHR_materials_specular, encodeSpecular(F0 tint, strength)
   // (lib/common.glsl); with .a of `emissive` it gives F0 and F90 (lib/brdf.glsl).
   graph::ImageHandle specular;
+  // RGBA32_UINT: clear coat (normal, factor, roughness) and sheen (colour, roughness), encodeLayers()
+  // (lib/common.glsl); zero where a material has neither.
+  graph::ImageHandle layers;
   graph::ImageHandle id;  // R32_UINT instance row, kBackgroundId for sky
   // RG16F uvCurrent − uvPrevious (unjittered; docs/techniques.md §2): the history of a pixel is at
   // uv − motion. Camera and object motion for geometry; 0 on the background, whose (camera)

@@ -80,6 +80,21 @@ vec3 decodeSpecularTint(vec3 e) {
 vec4 encodeSpecular(vec4 specular) { return vec4(encodeSpecularTint(specular.rgb), specular.a); }
 vec4 decodeSpecular(vec4 texel) { return vec4(decodeSpecularTint(texel.rgb), texel.a); }
 
+// The G-buffer's layers target (RGBA32_UINT; GBufferValues::coat and ::sheen): x the coat normal,
+// octahedral in 2 × 16-bit snorm; y the coat factor, coat roughness and sheen roughness, 8 bits
+// each; z the sheen colour, sRGB-encoded 8 bits per channel. The last byte of y and z and all of w
+// are reserved (0). A pixel without layers (and the background, cleared to 0) has factor and
+// colour 0: no coat, no sheen.
+uvec4 encodeLayers(vec4 coat, vec4 sheen) {
+  return uvec4(packSnorm2x16(coat.xy), packUnorm4x8(vec4(coat.z, coat.w, sheen.a, 0.0)),
+               packUnorm4x8(vec4(linearToSrgb(clamp(sheen.rgb, vec3(0.0), vec3(1.0))), 0.0)), 0u);
+}
+void decodeLayers(uvec4 e, out vec4 coat, out vec4 sheen) {
+  vec4 y = unpackUnorm4x8(e.y);
+  coat = vec4(unpackSnorm2x16(e.x), y.x, y.y);
+  sheen = vec4(srgbToLinear(unpackUnorm4x8(e.z).rgb), y.z);
+}
+
 // PCG hash (Jarzynski & Olano 2020); seeds go through the hash (docs/techniques.md §3).
 uint pcg(uint v) {
   uint s = v * 747796405u + 2891336453u;

@@ -6,6 +6,7 @@ layout(location = 3) out vec4 outEmissive;
 layout(location = 4) out uint outId;
 layout(location = 5) out vec2 outMotion;
 layout(location = 6) out vec4 outSpecular;
+layout(location = 7) out uvec4 outLayers;
 
 void writeGBuffer(GBufferValues gb, uint id, vec2 motion) {
   outNormals = gb.normals;
@@ -15,6 +16,7 @@ void writeGBuffer(GBufferValues gb, uint id, vec2 motion) {
   outId = id;
   outMotion = motion;
   outSpecular = encodeSpecular(gb.specular);
+  outLayers = encodeLayers(gb.coat, gb.sheen);
 }
 
 // Per-pixel, per-frame coverage noise for alpha BLEND (stochastic transparency).

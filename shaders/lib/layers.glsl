@@ -4,11 +4,11 @@
 // stretched by anisotropy and its Fresnel term replaced by the thin film's; sheen sits on the base
 // (albedo scaling), the clear coat on both. A material without layers never comes here, so its
 // paths are those of lib/pt_bsdf.glsl unchanged. Needs lib/brdf.glsl, lib/textures.glsl,
-// lib/surface.glsl, shared/vndf.h and shared/sheen.h.
+// lib/surface.glsl, shared/vndf.h, shared/sheen.h and lib/layer_lobes.glsl.
 #ifndef RAYSTER_LAYERS_GLSL
 #define RAYSTER_LAYERS_GLSL
 
-layout(buffer_reference, scalar) readonly buffer LayersOf { MaterialLayers l; };
+#include "lib/layer_lobes.glsl"
 
 struct SurfaceLayers {
   float clearcoat;   // 0: no coat
@@ -23,8 +23,6 @@ struct SurfaceLayers {
   vec3 anisoT, anisoB;   // world tangent frame of the base lobe, around the shading normal
   float dispersion;      // 20 / Abbe number
 };
-
-const float kCoatF0 = 0.04;  // η 1.5 against air
 
 // The layers at a surface point. `ns` is the final shading normal (normal-mapped) and `nFace`
 // the interpolated normal facing the viewer (the coat's normal without its own texture);
@@ -43,24 +41,12 @@ SurfaceLayers evaluateLayers(MaterialRecord m, SurfacePoint sp, vec3 ns, vec3 nF
     orthonormalBasis(ns, t, b);
   }
 
-  o.clearcoat = clamp(l.clearcoat * SAMPLE_SLOT(l.clearcoatTexture, sp.uv0, sp.uv1, vec4(1.0)).r, 0.0, 1.0);
-  float coatRoughness =
-      clamp(l.clearcoatRoughness * SAMPLE_SLOT(l.clearcoatRoughnessTexture, sp.uv0, sp.uv1, vec4(1.0)).g, 0.0, 1.0);
+  float coatRoughness;
+  o.clearcoat = coatAt(l, sp, nFace, o.coatNormal, coatRoughness);
   o.coatAlpha = max(coatRoughness * coatRoughness, 1e-4);
-  o.coatNormal = nFace;
-  if (l.clearcoatNormalTexture.slot != kNoTexture) {
-    vec3 ct = sp.tangent.xyz - nFace * dot(nFace, sp.tangent.xyz);
-    if (dot(ct, ct) > 1e-12) {
-      ct = normalize(ct);
-      vec3 cb = cross(nFace, ct) * (sp.tangent.w < 0.0 ? -1.0 : 1.0);
-      vec3 tn = SAMPLE_SLOT(l.clearcoatNormalTexture, sp.uv0, sp.uv1, vec4(0.5, 0.5, 1.0, 1.0)).xyz * 2.0 - 1.0;
-      tn.xy *= l.clearcoatNormalScale;
-      o.coatNormal = normalize(ct * tn.x + cb * tn.y + nFace * tn.z);
-    }
-  }
-
-  o.sheenColor = l.sheenColor * SAMPLE_SLOT(l.sheenColorTexture, sp.uv0, sp.uv1, vec4(1.0)).rgb;
-  o.sheenRoughness = clamp(l.sheenRoughness * SAMPLE_SLOT(l.sheenRoughnessTexture, sp.uv0, sp.uv1, vec4(1.0)).a, 0.0, 1.0);
+  vec4 sheen = sheenAt(l, sp);
+  o.sheenColor = sheen.rgb;
+  o.sheenRoughness = sheen.a;
 
   o.iridescence = clamp(l.iridescence * SAMPLE_SLOT(l.iridescenceTexture, sp.uv0, sp.uv1, vec4(1.0)).r, 0.0, 1.0);
   o.filmIor = l.iridescenceIor;
@@ -113,8 +99,6 @@ vec3 filmSensitivity(float opd, vec3 shift) {
                                 0.0415560, 1.0572252);
   return xyzToRec709 * xyz;
 }
-
-float schlick1(float f0, float c) { return f0 + (1.0 - f0) * pow(1.0 - c, 5.0); }
 
 // Reflectance of air | film (η filmIor, `thickness` nm) | base (F0 f0) at cosθ = `c` (Belcour and
 // Barla's Airy sum to second order, with Schlick at both interfaces as KHR_materials_iridescence
@@ -169,15 +153,7 @@ vec3 toLobe(SurfaceLayers y, vec3 n, vec3 w) { return vec3(dot(w, y.anisoT), dot
 
 // ---- the layered BSDF ----
 
-float coatFresnel(SurfaceLayers y, vec3 v) { return y.clearcoat * schlick1(kCoatF0, clamp(dot(y.coatNormal, v), 0.0, 1.0)); }
-
-// What the base keeps under the sheen, seen from v and from l (the smaller: reciprocal).
-float sheenScale(SurfaceLayers y, float nv, float nl) {
-  float c = max(y.sheenColor.r, max(y.sheenColor.g, y.sheenColor.b));
-  if (c <= 0.0) return 1.0;
-  float e = max(min(sheenAlbedo(nv, y.sheenRoughness), 1.0), min(sheenAlbedo(nl, y.sheenRoughness), 1.0));
-  return 1.0 - c * e;
-}
+float coatFresnel(SurfaceLayers y, vec3 v) { return coatViewFresnel(y.clearcoat, dot(y.coatNormal, v)); }
 
 // f·cos of the whole stack for light from l.
 vec3 evalLayeredCos(SurfaceBsdf s, SurfaceLayers y, vec3 n, vec3 v, vec3 l) {
@@ -193,23 +169,12 @@ vec3 evalLayeredCos(SurfaceBsdf s, SurfaceLayers y, vec3 n, vec3 v, vec3 l) {
     vec3 lv = toLobe(y, n, v), ll = toLobe(y, n, l), lh = toLobe(y, n, h);
     float g2 = 1.0 / (1.0 + smithLambdaAniso(lv, y.alphaT, y.alphaB) + smithLambdaAniso(ll, y.alphaT, y.alphaB));
     vec3 spec = fresnel * ggxAnisoD(lh, y.alphaT, y.alphaB) * g2 / (4.0 * nv);
-    f = (diff + spec) * sheenScale(y, nv, nl);
-    if (any(greaterThan(y.sheenColor, vec3(0.0)))) {
-      // Normalised where Ashikhmin's term would reflect more than arrives (shared/sheen.h).
-      float e = sheenAlbedo(nv, y.sheenRoughness);
-      f += y.sheenColor * charlieDistribution(max(dot(n, h), 0.0), sheenAlpha(y.sheenRoughness)) *
-           ashikhminVisibility(nl, nv) * nl / max(e, 1.0);
-    }
+    f = (diff + spec) * sheenScale(y.sheenColor, y.sheenRoughness, nv, nl);
+    f += sheenCos(y.sheenColor, y.sheenRoughness, n, v, l);
   }
   if (y.clearcoat > 0.0) {
-    vec3 nc = y.coatNormal;
-    float cl = dot(nc, l), cv = max(dot(nc, v), 1e-4);
     f *= 1.0 - coatFresnel(y, v);
-    if (cl > 0.0) {
-      vec3 h = normalize(v + l);
-      float a2 = y.coatAlpha * y.coatAlpha;
-      f += y.clearcoat * schlick1(kCoatF0, max(dot(v, h), 0.0)) * ggxD(max(dot(nc, h), 0.0), a2) * smithV(cl, cv, a2) * cl;
-    }
+    f += coatCos(y.clearcoat, y.coatAlpha * y.coatAlpha, y.coatNormal, v, l);
   }
   return f;
 }

@@ -5,11 +5,16 @@
 // `void skipLightVisibility(inout uint rng)`, which draws the random numbers lightVisibility would
 // have drawn without tracing (a light that cannot contribute keeps the path's later samples as
 // they were).
+// The clear coat and sheen (KHR_materials_clearcoat, _sheen) shade as the path tracer's layered
+// BSDF does for direct light (lib/layer_lobes.glsl); their ambient, environment and indirect light
+// is the untraced kind (the coat's reflection of the environment or the probes, not a traced ray).
 // Needs lib/lights.glsl, lib/light_select.glsl, lib/brdf.glsl and lib/environment.glsl.
 #ifndef RAYSTER_SHADING_GLSL
 #define RAYSTER_SHADING_GLSL
 
 #include "lib/specular_weight.glsl"
+#include "shared/sheen.h"
+#include "lib/layer_lobes.glsl"
 
 struct ShadingInput {
   vec3 p;          // position
@@ -39,13 +44,39 @@ struct ShadingInput {
   // (a mirror sphere's reflection of the sun) is spread over the pixel, not hit or missed by its
   // centre. 0 at the bounce loop's hits.
   float highlightWiden;
+  // The layers (GBufferValues::coat, ::sheen; setLayers()): 0 factor and colour without them.
+  float clearcoat;
+  float coatRoughness;
+  vec3 coatNormal;  // facing the viewer
+  vec3 sheenColor;
+  float sheenRoughness;
 };
+
+// The layers from GBufferValues::coat and ::sheen (or their G-buffer encoding, decodeLayers()).
+void setLayers(inout ShadingInput s, vec4 coat, vec4 sheen) {
+  s.clearcoat = coat.z;
+  s.coatRoughness = coat.w;
+  s.coatNormal = coat.z > 0.0 ? octDecode(coat.xy) : s.n;
+  if (dot(s.coatNormal, s.v) < 0.0) s.coatNormal = reflect(s.coatNormal, s.ng);  // seen from behind: the shading normal's side
+  s.sheenColor = sheen.rgb;
+  s.sheenRoughness = sheen.a;
+}
+
+// What the base keeps of light it sends towards v under the layers: 1 − the coat's view Fresnel,
+// times the sheen's albedo scaling at the view. Multiplies the traced specular light of the base
+// the lighting pass adds to shadeSurface().
+float underLayers(ShadingInput s) {
+  float nv = max(dot(s.n, s.v), 1e-4);
+  return (1.0 - coatViewFresnel(s.clearcoat, dot(s.coatNormal, s.v))) * sheenScale(s.sheenColor, s.sheenRoughness, nv, nv);
+}
 
 struct ShadingTerms {
   SurfaceBsdf bsdf;
   float w;  // share of the specular light traced elsewhere (s.tracedWeight)
   vec3 fv;  // directional specular albedo (Fresnel at the view angle)
   float fvDiffuse;  // the dielectric lobe's, largest channel: what the diffuse layer under it loses
+  float coatKeep;   // 1 − the coat's view Fresnel: what everything under the coat keeps
+  float sheenKeep;  // the sheen's albedo scaling at the view: what the base keeps of its ambient light
 };
 
 // Fresnel at the view angle, blurred with roughness (its grazing rise fades as the lobe widens).
@@ -62,6 +93,8 @@ ShadingTerms shadingTerms(ShadingInput s) {
   float nv = max(dot(s.n, s.v), 1e-4);
   t.fv = viewFresnel(t.bsdf.f0, t.bsdf.f90, s.roughness, nv);
   t.fvDiffuse = viewFresnel(vec3(t.bsdf.diffuseF0), vec3(t.bsdf.diffuseF90), s.roughness, nv).r;
+  t.coatKeep = 1.0 - coatViewFresnel(s.clearcoat, dot(s.coatNormal, s.v));
+  t.sheenKeep = sheenScale(s.sheenColor, s.sheenRoughness, nv, nv);
   return t;
 }
 
@@ -79,6 +112,16 @@ vec3 shadeLight(ShadingInput s, ShadingTerms t, uint i, inout uint rng) {
   if (t.w < 1.0) f += (1.0 - t.w) * evalBsdfCos(t.bsdf, s.n, s.v, l, 0.5 * widen);
   if (t.w > 0.0 && s.sunHighlights && light.type == kLightDirectional)
     f += t.w * evalSpecularCos(t.bsdf, s.n, s.v, l, 0.5 * widen + s.highlightWiden);
+  // The layers, as lib/layers.glsl's evalLayeredCos stacks them: sheen on the base, the coat on
+  // both. The coat's lobe is never traced: all of it is here, its highlight widened by the light.
+  if (any(greaterThan(s.sheenColor, vec3(0.0)))) {
+    float nv = max(dot(s.n, s.v), 1e-4);
+    f = f * sheenScale(s.sheenColor, s.sheenRoughness, nv, max(nl, 0.0)) + sheenCos(s.sheenColor, s.sheenRoughness, s.n, s.v, l);
+  }
+  if (s.clearcoat > 0.0) {
+    float a = clamp(s.coatRoughness * s.coatRoughness + 0.5 * widen, 1e-4, 1.0);
+    f = f * t.coatKeep + coatCos(s.clearcoat, a * a, s.coatNormal, s.v, l);
+  }
   // Mirror, metal and glass hits of the bounce loop have no untraced lobe: no shadow ray for them
   // (on whitted's glass bunny every bounce used to trace one for nothing).
   if (all(equal(f, vec3(0.0)))) {
@@ -120,8 +163,7 @@ vec3 shadeSurface(ShadingInput s, bool direct, bool onePick, inout uint rng) {
 
   // Uniform ambient radiance stands in for indirect light: the traced indirect replaces its diffuse part.
   vec3 ambientReflectance = (s.useIndirect ? vec3(0.0) : bsdf.diffuse) + (1.0 - w) * bsdf.f0;
-  vec3 radiance = s.emissive + frame.ambient.rgb * ambientReflectance * occlusion;
-  if (direct) radiance += shadeDirect(s, t, onePick, rng);
+  vec3 radiance = frame.ambient.rgb * ambientReflectance * occlusion;
   // Diffuse: from the traced indirect rays (their misses see the environment, so the SH term would
   // count it twice), else the SH irradiance scaled by AO. Specular (the untraced share) along the
   // mirror direction, blurred towards the irradiance as roughness grows, scaled by AO.
@@ -144,6 +186,33 @@ vec3 shadeSurface(ShadingInput s, bool direct, bool onePick, inout uint rng) {
       radiance += (1.0 - w) * t.fv * specularEnv * occlusion;
     }
   }
+  // The base's ambient, environment and indirect light under the layers, and theirs: the sheen's
+  // (a broad lobe: the diffuse light's radiance times its albedo) and the coat's reflection (the
+  // probes' about the mirror direction, else the environment's at the coat's roughness).
+  radiance *= t.coatKeep * t.sheenKeep;
+  if (any(greaterThan(s.sheenColor, vec3(0.0)))) {
+    float nv = max(dot(s.n, s.v), 1e-4);
+    vec3 e = s.sheenColor * min(sheenAlbedo(nv, s.sheenRoughness), 1.0);
+    vec3 around = s.useIndirect ? s.indirect / kPi * s.ao
+                                : (frame.ambient.rgb + (frame.environmentKind != kEnvironmentBlack
+                                                            ? environmentIrradiance(s.n) / kPi
+                                                            : vec3(0.0))) * occlusion;
+    radiance += t.coatKeep * e * around;
+  }
+  if (s.clearcoat > 0.0) {
+    float fc = 1.0 - t.coatKeep;
+    vec3 coatLight = frame.ambient.rgb;
+    if (s.useIndirectSpecular)
+      coatLight += s.indirectSpecular / kPi;
+    else if (frame.environmentKind != kEnvironmentBlack)
+      coatLight += (frame.effectFlags & kEffectPrefilteredEnv) != 0u
+                       ? environmentSpecular(reflect(-s.v, s.coatNormal), s.coatRoughness)
+                       : mix(environmentRadiance(reflect(-s.v, s.coatNormal)),
+                             environmentIrradiance(reflect(-s.v, s.coatNormal)) / kPi, s.coatRoughness);
+    radiance += fc * coatLight * occlusion;
+  }
+  radiance += s.emissive;
+  if (direct) radiance += shadeDirect(s, t, onePick, rng);
   return radiance;
 }
 

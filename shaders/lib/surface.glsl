@@ -24,6 +24,11 @@ struct GBufferValues {
   // KHR_materials_specular (lib/brdf.glsl dielectricSpecular()): rgb the dielectric F0 tint, a the
   // strength. Unencoded here, so ray hits use it exactly; the G-buffer stores encodeSpecular() of it.
   vec4 specular;
+  // KHR_materials_clearcoat: xy the coat normal (oct, facing the viewer), z the factor (0: no coat),
+  // w the roughness. KHR_materials_sheen: rgb the linear colour (0: no sheen), a the roughness.
+  // The G-buffer stores encodeLayers() of both (lib/common.glsl).
+  vec4 coat;
+  vec4 sheen;
 };
 
 struct SurfacePoint {
@@ -72,6 +77,35 @@ vec3 volumeTransmittance(MaterialRecord m, float distance) {
   return exp(-sigma * distance);
 }
 
+layout(buffer_reference, scalar) readonly buffer LayersOf { MaterialLayers l; };
+
+// KHR_materials_clearcoat at a surface point: the factor, the coat normal (its own normal texture
+// on `nFace`, the interpolated normal facing the viewer) and the roughness.
+float coatAt(MaterialLayers l, SurfacePoint sp, vec3 nFace, out vec3 nc, out float roughness) {
+  float coat = clamp(l.clearcoat * SAMPLE_SLOT(l.clearcoatTexture, sp.uv0, sp.uv1, vec4(1.0)).r, 0.0, 1.0);
+  roughness =
+      clamp(l.clearcoatRoughness * SAMPLE_SLOT(l.clearcoatRoughnessTexture, sp.uv0, sp.uv1, vec4(1.0)).g, 0.0, 1.0);
+  nc = nFace;
+  if (l.clearcoatNormalTexture.slot != kNoTexture) {
+    vec3 ct = sp.tangent.xyz - nFace * dot(nFace, sp.tangent.xyz);
+    if (dot(ct, ct) > 1e-12) {
+      ct = normalize(ct);
+      vec3 cb = cross(nFace, ct) * (sp.tangent.w < 0.0 ? -1.0 : 1.0);
+      vec3 tn = SAMPLE_SLOT(l.clearcoatNormalTexture, sp.uv0, sp.uv1, vec4(0.5, 0.5, 1.0, 1.0)).xyz * 2.0 - 1.0;
+      tn.xy *= l.clearcoatNormalScale;
+      nc = normalize(ct * tn.x + cb * tn.y + nFace * tn.z);
+    }
+  }
+  return coat;
+}
+
+// KHR_materials_sheen at a surface point: rgb the linear colour, a the roughness.
+vec4 sheenAt(MaterialLayers l, SurfacePoint sp) {
+  vec3 color = l.sheenColor * SAMPLE_SLOT(l.sheenColorTexture, sp.uv0, sp.uv1, vec4(1.0)).rgb;
+  float roughness = clamp(l.sheenRoughness * SAMPLE_SLOT(l.sheenRoughnessTexture, sp.uv0, sp.uv1, vec4(1.0)).a, 0.0, 1.0);
+  return vec4(max(color, vec3(0.0)), roughness);
+}
+
 // Both normals face the viewer: the geometric normal from the triangle, the shading normal flipped
 // with it, so back faces of double-sided surfaces shade like front faces.
 GBufferValues evaluateSurface(MaterialRecord m, SurfacePoint sp, vec3 cameraPos) {
@@ -89,8 +123,11 @@ GBufferValues evaluateSurface(MaterialRecord m, SurfacePoint sp, vec3 cameraPos)
     o.material = vec4(1.0, 0.0, 0.0, packIor(m.ior, true));  // rough: no pass traces its reflection
     o.emissive = vec4(base.rgb * frame.exposure, m.ior);  // emitted light is pre-exposed (lib/frame.glsl)
     o.specular = vec4(0.0);
+    o.coat = vec4(octEncode(ns), 0.0, 0.0);
+    o.sheen = vec4(0.0);
     return o;
   }
+  const vec3 nFace = ns;  // the interpolated normal, before the normal texture: the coat's own
   vec4 mr = SAMPLE_SLOT(m.metallicRoughnessTexture, sp.uv0, sp.uv1, vec4(1.0));
   float roughness = clamp(m.roughness * mr.g, 0.0, 1.0);
   float metallic = clamp(m.metallic * mr.b, 0.0, 1.0);
@@ -121,6 +158,16 @@ GBufferValues evaluateSurface(MaterialRecord m, SurfacePoint sp, vec3 cameraPos)
   o.material = vec4(roughness, metallic, transmission, packIor(m.ior, m.thickness <= 0.0));
   o.emissive = vec4(emissive, m.ior);  // the exact ior (fp16): material.a holds only 7 bits of it
   o.specular = vec4(tint, clamp(strength, 0.0, 1.0));
+  o.coat = vec4(octEncode(nFace), 0.0, 0.0);
+  o.sheen = vec4(0.0);
+  if (m.layers != 0ul) {
+    MaterialLayers l = LayersOf(m.layers).l;
+    vec3 nc;
+    float coatRoughness;
+    float coat = coatAt(l, sp, nFace, nc, coatRoughness);
+    if (coat > 0.0) o.coat = vec4(octEncode(nc), coat, coatRoughness);
+    o.sheen = sheenAt(l, sp);
+  }
   return o;
 }
 

@@ -2,7 +2,8 @@
 // Microfacet Sheen BRDF", 2017) with Ashikhmin's visibility term, and its directional albedo E(n·v,
 // roughness) as a table, which scales the layers below (albedo scaling, as the extension's
 // specification describes). Compiled as GLSL by the path tracer and as C++ by the table's test
-// (tests/unit/test_sheen.cpp recomputes the table from these functions).
+// (tests/unit/test_sheen.cpp recomputes the table from these functions). GLSL includers need
+// lib/frame.glsl and lib/textures.glsl first (sheenAlbedo() reads the table's texture).
 #ifndef RAYSTER_SHARED_SHEEN_H
 #define RAYSTER_SHARED_SHEEN_H
 
@@ -49,9 +50,6 @@ RAYSTER_FN float ashikhminVisibility(float nl, float nv) { return 1.0f / (4.0f *
 // Near grazing Ashikhmin's term reflects more than arrives (E > 1): sheenLobeScale() normalises it.
 #ifdef __cplusplus
 RAYSTER_CONST float kSheenAlbedo[kSheenTableSize * kSheenTableSize] = {
-#else
-const float kSheenAlbedo[kSheenTableSize * kSheenTableSize] = float[](
-#endif
     5.45817f, 1.34279f, 0.38027f, 0.09779f, 0.02153f, 0.00389f, 0.00055f, 0.00006f, 0.00000f, 0.00000f, 0.00000f,
     0.00000f, 0.00000f, 0.00000f, 0.00000f, 0.00000f, 5.45817f, 1.34279f, 0.38027f, 0.09779f, 0.02153f, 0.00389f,
     0.00055f, 0.00006f, 0.00000f, 0.00000f, 0.00000f, 0.00000f, 0.00000f, 0.00000f, 0.00000f, 0.00000f, 2.95021f,
@@ -75,14 +73,13 @@ const float kSheenAlbedo[kSheenTableSize * kSheenTableSize] = float[](
     0.17638f, 0.15630f, 0.13696f, 0.11824f, 0.64985f, 0.53794f, 0.47517f, 0.42758f, 0.38831f, 0.35442f, 0.32433f,
     0.29708f, 0.27201f, 0.24867f, 0.22673f, 0.20592f, 0.18604f, 0.16694f, 0.14846f, 0.13049f, 0.63213f, 0.52616f,
     0.46695f, 0.42213f, 0.38517f, 0.35329f, 0.32498f, 0.29932f, 0.27570f, 0.25369f, 0.23295f, 0.21326f, 0.19440f,
-    0.17623f, 0.15861f, 0.14142f
-#ifdef __cplusplus
-};
-#else
-);
+    0.17623f, 0.15861f, 0.14142f};
 #endif
 
-// E at (n·v, roughness), bilinear between the table's entries.
+// E at (n·v, roughness), bilinear between the table's entries. On the GPU the table is a bindless
+// R16F texture (FrameConstants::sheenSlot) whose linear filter does the same: a constant array
+// indexed per lane made lavapipe's LLVM take minutes over the path tracer.
+#ifdef __cplusplus
 RAYSTER_FN float sheenAlbedo(float nv, float roughness) {
   float n = float(kSheenTableSize - 1u);
   float x = clamp(nv, 0.0f, 1.0f) * n, y = clamp(roughness, 0.0f, 1.0f) * n;
@@ -93,6 +90,13 @@ RAYSTER_FN float sheenAlbedo(float nv, float roughness) {
   float bottom = mix(kSheenAlbedo[i + kSheenTableSize], kSheenAlbedo[i + kSheenTableSize + 1u], fx);
   return mix(top, bottom, fy);
 }
+#else
+float sheenAlbedo(float nv, float roughness) {
+  const float n = float(kSheenTableSize);
+  vec2 uv = (clamp(vec2(nv, roughness), 0.0, 1.0) * (n - 1.0) + 0.5) / n;  // texel centres at the ends
+  return textureLod(textures[nonuniformEXT(frame.sheenSlot)], uv, 0.0).r;
+}
+#endif
 
 #ifdef __cplusplus
 }  // namespace rayster::gpu

@@ -277,6 +277,7 @@ struct FrameConstants {
   // This frame's exposure over the previous frame's (1 after a cut): radiance that histories of the
   // previous frame hold was pre-exposed with the old exposure and is multiplied by this when read.
   float exposureRatio;
+  uint sheenSlot;  // bindless slot of the sheen albedo table (shared/sheen.h; render/gpu_environment.cpp), R16F
 };
 
 // GPU culling (render/passes/cull.cpp, docs/techniques.md §23): one row per GpuScene::Draw, in order.
@@ -379,7 +380,7 @@ static_assert(offsetof(FrameConstants, mirrorRoughness) == 572);
 static_assert(sizeof(EmissiveTriangle) == 80);
 static_assert(offsetof(FrameConstants, emissiveTriangles) == 592);
 static_assert(offsetof(FrameConstants, maxSpecularBounces) == 628);
-static_assert(sizeof(FrameConstants) == 640);
+static_assert(sizeof(FrameConstants) == 648);
 static_assert(sizeof(DrawRecord) == 40);
 static_assert(offsetof(DrawRecord, aabbMin) == 16);
 static_assert(sizeof(CullPush) == 56);
