@@ -1,5 +1,7 @@
 #include "render/deform.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "render/gpu_scene.h"
@@ -32,6 +34,36 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccess
 
 }  // namespace
 
+float refitDrift(const DeformReach& reach, const DeformPose& built, const DeformPose& now) {
+  float morph = 0.0f, widen = 0.0f;
+  for (size_t t = 0; t < reach.targetReach.size(); ++t) {
+    const float was = t < built.weights.size() ? built.weights[t] : 0.0f;
+    const float is = t < now.weights.size() ? now.weights[t] : 0.0f;
+    morph += reach.targetReach[t] * std::abs(is - was);
+    widen += reach.targetReach[t] * std::max(std::abs(is), std::abs(was));
+  }
+  float skin = 0.0f;
+  const size_t joints = std::min(built.joints.size(), now.joints.size());
+  if (joints > 1) {
+    // The first joint's motion since the build, R = M₀·B₀⁻¹, stands for the rigid part; a vertex
+    // blended from joints j moved by Σ w_j (M_j − R·B_j) p beyond it, at most the largest term.
+    const glm::mat4 rigid = now.joints[0] * glm::inverse(built.joints[0]);
+    const glm::vec3 lo = reach.restMin - glm::vec3(widen), hi = reach.restMax + glm::vec3(widen);
+    for (size_t j = 1; j < joints; ++j) {
+      const glm::mat4 away = now.joints[j] - rigid * built.joints[j];
+      for (int c = 0; c < 8; ++c) {
+        const glm::vec4 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z, 1.0f);
+        skin = std::max(skin, glm::length(glm::vec3(away * corner)));
+      }
+    }
+  }
+  // A morph moves a vertex before its joints do: scaled by the largest stretch of any joint matrix.
+  float scale = joints > 0 ? 0.0f : 1.0f;
+  for (size_t j = 0; j < now.joints.size(); ++j)
+    for (int k = 0; k < 3; ++k) scale = std::max(scale, glm::length(glm::vec3(now.joints[j][k])));
+  return skin + morph * scale;
+}
+
 uint32_t addDeformer(rhi::Context& ctx, const scene::Scene& scene, uint32_t sceneInstance, uint32_t meshFirstGeometry,
                      const std::vector<rhi::BlasGeometry>& meshBlas, std::vector<gpu::GeometryRecord>& rows,
                      GpuScene& gs) {
@@ -52,6 +84,19 @@ uint32_t addDeformer(rhi::Context& ctx, const scene::Scene& scene, uint32_t scen
   }
   out.weightCount = mesh.primitives.empty() ? 0 : uint32_t(mesh.primitives.front().targets.size());
   for (const Deformers::Instance& other : d.instances) out.weightOffset += &other == &out ? 0 : other.weightCount;
+
+  out.reach.targetReach.assign(out.weightCount, 0.0f);
+  bool anyPosition = false;
+  for (const scene::Primitive& prim : mesh.primitives) {
+    for (const glm::vec3& v : prim.positions) {
+      out.reach.restMin = anyPosition ? glm::min(out.reach.restMin, v) : v;
+      out.reach.restMax = anyPosition ? glm::max(out.reach.restMax, v) : v;
+      anyPosition = true;
+    }
+    for (size_t t = 0; t < prim.targets.size() && t < out.weightCount; ++t)
+      for (const glm::vec3& delta : prim.targets[t].positions)
+        out.reach.targetReach[t] = std::max(out.reach.targetReach[t], glm::length(delta));
+  }
 
   for (size_t p = 0; p < mesh.primitives.size(); ++p) {
     const scene::Primitive& prim = mesh.primitives[p];
@@ -137,17 +182,22 @@ void deformMeshes(graph::RenderGraph& graph, const FrameInputs& in, const scene:
   for (Deformers::Instance& i : d->instances) {
     const scene::Instance& src = scene.instances[i.sceneInstance];
     const scene::Instance& posed = i.sceneInstance < pose.instances.size() ? pose.instances[i.sceneInstance] : src;
+    DeformPose now;
     if (i.jointCount > 0) {
-      const std::vector<glm::mat4> m =
-          scene::jointMatrices(pose.nodes.empty() ? scene : pose, scene.skins[size_t(src.skin)]);
-      std::memcpy(joints + i.jointOffset, m.data(), i.jointCount * sizeof(glm::mat4));
+      now.joints = scene::jointMatrices(pose.nodes.empty() ? scene : pose, scene.skins[size_t(src.skin)]);
+      std::memcpy(joints + i.jointOffset, now.joints.data(), i.jointCount * sizeof(glm::mat4));
     }
     if (i.weightCount > 0) {
       scene::Instance withWeights = src;
       withWeights.morphWeights = posed.morphWeights;
-      const std::vector<float> w = scene::morphWeights(scene, withWeights, i.weightCount);
-      std::memcpy(weights + i.weightOffset, w.data(), i.weightCount * sizeof(float));
+      now.weights = scene::morphWeights(scene, withWeights, i.weightCount);
+      std::memcpy(weights + i.weightOffset, now.weights.data(), i.weightCount * sizeof(float));
     }
+    // Refit while the pose stays close enough to the last build's (refitDrift()), else rebuild.
+    // Without traced passes this frame no BLAS is touched: the last build's pose stays.
+    const float size = glm::length(i.reach.restMax - i.reach.restMin);
+    i.rebuild = first || refitDrift(i.reach, i.built, now) > Deformers::kRefitDriftLimit * size;
+    if (traced && i.rebuild) i.built = std::move(now);
   }
   graph.addPass(
       "deform",
@@ -172,9 +222,9 @@ void deformMeshes(graph::RenderGraph& graph, const FrameInputs& in, const scene:
                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_MEMORY_READ_BIT);
         if (!traced) return;
         for (Deformers::Instance& i : d->instances) {
-          const bool refit = !first && i.refits < Deformers::kRebuildInterval;
-          i.blas.record(pc.cmd, refit);
-          i.refits = refit ? i.refits + 1 : 0;
+          i.blas.record(pc.cmd, !i.rebuild);
+          i.refits = i.rebuild ? 0 : i.refits + 1;
+          i.rebuilds += i.rebuild ? 1 : 0;
         }
         memoryBarrier(pc.cmd, VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                       VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,

@@ -4,11 +4,14 @@
 // from the mesh's rest vertices, its skin's joint matrices and its morph weights, plus last frame's
 // positions for the motion vectors (GeometryRecord::prevPositionAddress). Its geometry rows point at
 // those buffers, so every pass — raster, traced and the path tracer — sees the pose; on devices
-// with ray tracing it has a BLAS of its own, refitted after each deformation and rebuilt every
-// kRebuildInterval refits (and at the first frame of a run), when a refit's boxes have grown loose.
+// with ray tracing it has a BLAS of its own, refitted after each deformation and rebuilt when the
+// refit's boxes have grown loose: when refitDrift() since the last build passes kRefitDriftLimit
+// of the mesh's size (and at the first frame of a run).
 #include <cstdint>
 #include <memory>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "graph/graph.h"
 #include "rhi/accel.h"
@@ -25,9 +28,30 @@ namespace rayster::render {
 struct GpuScene;
 struct FrameInputs;
 
+// What a deforming mesh's pose is made of: its joint matrices (mesh space) and morph weights.
+struct DeformPose {
+  std::vector<glm::mat4> joints;
+  std::vector<float> weights;
+};
+// What refitDrift() needs of the mesh: its rest-pose box and each morph target's largest position
+// delta.
+struct DeformReach {
+  glm::vec3 restMin{0.0f}, restMax{0.0f};
+  std::vector<float> targetReach;
+};
+// An upper bound, in the mesh's space, on how far any vertex has moved relative to the rest of the
+// mesh between two poses. A refit keeps the built tree and moves its boxes, each growing by at most
+// this on every side beyond the rigid motion, so the tree's quality drops as this grows against the
+// mesh's size. The skin's share: every joint's motion less the first joint's (a mesh that moves
+// only rigidly stays at 0), bounded at the corners of the rest box widened by the morphs (a skinned
+// position is an affine, convex blend of its joints'); the morphs': each target's reach × how much
+// its weight changed.
+float refitDrift(const DeformReach& reach, const DeformPose& built, const DeformPose& now);
+
 struct Deformers {
-  // Refits between full rebuilds of a deforming BLAS.
-  static constexpr uint32_t kRebuildInterval = 16;
+  // A BLAS is rebuilt once refitDrift() since its build passes this share of the mesh's rest-box
+  // diagonal: its refitted boxes may then be a tenth of the mesh wider on every side.
+  static constexpr float kRefitDriftLimit = 0.1f;
 
   struct Primitive {
     gpu::DeformPush push{};  // joints and weights addresses set per frame
@@ -42,6 +66,10 @@ struct Deformers {
     std::vector<rhi::BlasGeometry> blasGeometries;
     rhi::DynamicBlas blas;  // empty without ray tracing
     uint32_t refits = 0;    // since the last build
+    uint32_t rebuilds = 0;  // since the start (the first frame's included)
+    DeformReach reach;
+    DeformPose built;     // the pose of the last BLAS build
+    bool rebuild = true;  // this frame's deformation rebuilds the BLAS (decided with the pose)
   };
   std::vector<Instance> instances;
   rhi::Buffer joints;   // host-visible mat4[], rewritten each frame
