@@ -45,10 +45,14 @@ TEST(SpirvReflect, LightingDeclaresItsBindingsByName) {
   ASSERT_NE(textures, nullptr);
   EXPECT_EQ(textures->count, 0u);  // runtime-sized
   EXPECT_EQ(l.pushConstantBytes, 0u);
-  // Binding numbers 0..13 of set 0, each once.
+  // Binding numbers 0..14 of set 0, each once; the last the G-buffer's layers (an unsigned texture).
   uint32_t set0 = 0;
   for (const rhi::ShaderBinding& b : l.bindings) set0 += b.set == 0 ? 1u : 0u;
-  EXPECT_EQ(set0, 14u);
+  EXPECT_EQ(set0, 15u);
+  const rhi::ShaderBinding* layers = l.find("layersTex");
+  ASSERT_NE(layers, nullptr);
+  EXPECT_EQ(layers->binding, 14u);
+  EXPECT_EQ(layers->type, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
 }
 
 TEST(SpirvReflect, RayTracingStagesAndReadWriteImages) {
