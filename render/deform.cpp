@@ -223,8 +223,6 @@ void deformMeshes(graph::RenderGraph& graph, const FrameInputs& in, const scene:
         if (!traced) return;
         for (Deformers::Instance& i : d->instances) {
           i.blas.record(pc.cmd, !i.rebuild);
-          i.refits = i.rebuild ? 0 : i.refits + 1;
-          i.rebuilds += i.rebuild ? 1 : 0;
         }
         memoryBarrier(pc.cmd, VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                       VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,

@@ -65,8 +65,6 @@ struct Deformers {
     std::vector<Primitive> primitives;
     std::vector<rhi::BlasGeometry> blasGeometries;
     rhi::DynamicBlas blas;  // empty without ray tracing
-    uint32_t refits = 0;    // since the last build
-    uint32_t rebuilds = 0;  // since the start (the first frame's included)
     DeformReach reach;
     DeformPose built;     // the pose of the last BLAS build
     bool rebuild = true;  // this frame's deformation rebuilds the BLAS (decided with the pose)

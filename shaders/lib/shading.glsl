@@ -65,10 +65,12 @@ void setLayers(inout ShadingInput s, vec4 coat, vec4 sheen) {
 // What the base keeps of light it sends towards v under the layers: 1 − the coat's view Fresnel,
 // times the sheen's albedo scaling at the view. Multiplies the traced specular light of the base
 // the lighting pass adds to shadeSurface().
-float underLayers(ShadingInput s) {
+float coatKeep(ShadingInput s) { return 1.0 - coatViewFresnel(s.clearcoat, dot(s.coatNormal, s.v)); }
+float sheenKeep(ShadingInput s) {
   float nv = max(dot(s.n, s.v), 1e-4);
-  return (1.0 - coatViewFresnel(s.clearcoat, dot(s.coatNormal, s.v))) * sheenScale(s.sheenColor, s.sheenRoughness, nv, nv);
+  return sheenScale(s.sheenColor, s.sheenRoughness, nv, nv);
 }
+float underLayers(ShadingInput s) { return coatKeep(s) * sheenKeep(s); }
 
 struct ShadingTerms {
   SurfaceBsdf bsdf;
@@ -78,6 +80,14 @@ struct ShadingTerms {
   float coatKeep;   // 1 − the coat's view Fresnel: what everything under the coat keeps
   float sheenKeep;  // the sheen's albedo scaling at the view: what the base keeps of its ambient light
 };
+
+// Untraced specular light from the environment about the mirror direction r at a roughness: the
+// GGX-prefiltered levels where they exist, else a blend of radiance and irradiance.
+vec3 environmentSpecularOrBlend(vec3 r, float roughness) {
+  return (frame.effectFlags & kEffectPrefilteredEnv) != 0u
+             ? environmentSpecular(r, roughness)
+             : mix(environmentRadiance(r), environmentIrradiance(r) / kPi, roughness);
+}
 
 // Fresnel at the view angle, blurred with roughness (its grazing rise fades as the lobe widens).
 vec3 viewFresnel(vec3 f0, vec3 f90, float roughness, float nv) {
@@ -93,8 +103,8 @@ ShadingTerms shadingTerms(ShadingInput s) {
   float nv = max(dot(s.n, s.v), 1e-4);
   t.fv = viewFresnel(t.bsdf.f0, t.bsdf.f90, s.roughness, nv);
   t.fvDiffuse = viewFresnel(vec3(t.bsdf.diffuseF0), vec3(t.bsdf.diffuseF90), s.roughness, nv).r;
-  t.coatKeep = 1.0 - coatViewFresnel(s.clearcoat, dot(s.coatNormal, s.v));
-  t.sheenKeep = sheenScale(s.sheenColor, s.sheenRoughness, nv, nv);
+  t.coatKeep = coatKeep(s);
+  t.sheenKeep = sheenKeep(s);
   return t;
 }
 
@@ -179,11 +189,7 @@ vec3 shadeSurface(ShadingInput s, bool direct, bool onePick, inout uint rng) {
   } else if (frame.environmentKind != kEnvironmentBlack) {
     if (!s.useIndirect) radiance += bsdf.diffuse * environmentIrradiance(s.n) / kPi * (1.0 - fd) * occlusion;
     if (w < 1.0) {
-      vec3 r = reflect(-s.v, s.n);
-      vec3 specularEnv = (frame.effectFlags & kEffectPrefilteredEnv) != 0u
-                             ? environmentSpecular(r, s.roughness)
-                             : mix(environmentRadiance(r), environmentIrradiance(r) / kPi, s.roughness);
-      radiance += (1.0 - w) * t.fv * specularEnv * occlusion;
+      radiance += (1.0 - w) * t.fv * environmentSpecularOrBlend(reflect(-s.v, s.n), s.roughness) * occlusion;
     }
   }
   // The base's ambient, environment and indirect light under the layers, and theirs: the sheen's
@@ -205,10 +211,7 @@ vec3 shadeSurface(ShadingInput s, bool direct, bool onePick, inout uint rng) {
     if (s.useIndirectSpecular)
       coatLight += s.indirectSpecular / kPi;
     else if (frame.environmentKind != kEnvironmentBlack)
-      coatLight += (frame.effectFlags & kEffectPrefilteredEnv) != 0u
-                       ? environmentSpecular(reflect(-s.v, s.coatNormal), s.coatRoughness)
-                       : mix(environmentRadiance(reflect(-s.v, s.coatNormal)),
-                             environmentIrradiance(reflect(-s.v, s.coatNormal)) / kPi, s.coatRoughness);
+      coatLight += environmentSpecularOrBlend(reflect(-s.v, s.coatNormal), s.coatRoughness);
     radiance += fc * coatLight * occlusion;
   }
   radiance += s.emissive;
