@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <tuple>
 
 #include "render/gpu_scene.h"
 #include "render/passes/passes.h"
@@ -64,6 +66,61 @@ float refitDrift(const DeformReach& reach, const DeformPose& built, const Deform
   return skin + morph * scale;
 }
 
+DeformBounds deformBounds(const scene::Primitive& primitive, bool skinned) {
+  DeformBounds b;
+  for (size_t i = 0; i < primitive.positions.size(); ++i) {
+    b.restMin = i == 0 ? primitive.positions[i] : glm::min(b.restMin, primitive.positions[i]);
+    b.restMax = i == 0 ? primitive.positions[i] : glm::max(b.restMax, primitive.positions[i]);
+  }
+  for (const scene::MorphTarget& target : primitive.targets) {
+    // A vertex the target does not list moves by 0, so 0 is always in the range.
+    glm::vec3 lo(0.0f), hi(0.0f);
+    for (const glm::vec3& delta : target.positions) lo = glm::min(lo, delta), hi = glm::max(hi, delta);
+    b.targetMin.push_back(lo);
+    b.targetMax.push_back(hi);
+  }
+  if (!skinned || primitive.influences.empty()) return b;
+  std::vector<bool> used;
+  b.unweighted = false;
+  for (size_t i = 0; i < primitive.positions.size(); ++i) {
+    bool weighted = false;
+    for (const scene::SkinInfluences& set : primitive.influences)
+      for (int k = 0; k < 4; ++k) {
+        if (!(set.weights[i][k] > 0.0f)) continue;
+        const uint32_t j = set.joints[i][k];
+        if (j >= used.size()) used.resize(j + 1, false);
+        used[j] = true;
+        weighted = true;
+      }
+    b.unweighted = b.unweighted || !weighted;
+  }
+  for (uint32_t j = 0; j < used.size(); ++j)
+    if (used[j]) b.joints.push_back(j);
+  return b;
+}
+
+std::pair<glm::vec3, glm::vec3> deformedBounds(const DeformBounds& bounds, const DeformPose& pose) {
+  glm::vec3 morphLo = bounds.restMin, morphHi = bounds.restMax;
+  for (size_t t = 0; t < bounds.targetMin.size(); ++t) {
+    const float w = t < pose.weights.size() ? pose.weights[t] : 0.0f;
+    const glm::vec3 a = w * bounds.targetMin[t], b = w * bounds.targetMax[t];
+    morphLo += glm::min(a, b), morphHi += glm::max(a, b);
+  }
+  const glm::vec3 centre = 0.5f * (morphLo + morphHi);
+  const glm::vec3 half = 0.5f * (morphHi - morphLo);
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  if (bounds.unweighted) lo = centre - half, hi = centre + half;
+  for (uint32_t j : bounds.joints) {
+    const glm::mat4& m = j < pose.joints.size() ? pose.joints[j] : glm::mat4(1.0f);
+    // An affine box image: the centre moves, each half extent is |M| (the absolute 3×3) times it.
+    const glm::vec3 c = glm::vec3(m * glm::vec4(centre, 1.0f));
+    const glm::mat3 a(glm::abs(glm::vec3(m[0])), glm::abs(glm::vec3(m[1])), glm::abs(glm::vec3(m[2])));
+    const glm::vec3 e = a * half;
+    lo = glm::min(lo, c - e), hi = glm::max(hi, c + e);
+  }
+  return {lo, hi};
+}
+
 uint32_t addDeformer(rhi::Context& ctx, const scene::Scene& scene, uint32_t sceneInstance, uint32_t meshFirstGeometry,
                      const std::vector<rhi::BlasGeometry>& meshBlas, std::vector<gpu::GeometryRecord>& rows,
                      GpuScene& gs) {
@@ -104,6 +161,7 @@ uint32_t addDeformer(rhi::Context& ctx, const scene::Scene& scene, uint32_t scen
     const std::vector<gpu::Vertex> rest = gpuVertices(prim);
     const uint32_t n = uint32_t(rest.size());
     Deformers::Primitive& dp = out.primitives.emplace_back();
+    dp.bounds = deformBounds(prim, skinned);
     dp.vertices = buffer(ctx, rest, usage, "deformed-vertices");
     std::vector<glm::vec3> positions(rest.size());
     for (size_t i = 0; i < rest.size(); ++i) positions[i] = rest[i].position;
@@ -179,6 +237,7 @@ void deformMeshes(graph::RenderGraph& graph, const FrameInputs& in, const scene:
   // (else the scene's), in the host-visible tables the pushes point into (frames are serialised).
   auto* joints = static_cast<glm::mat4*>(d->joints.mapped());
   auto* weights = static_cast<float*>(d->weights.mapped());
+  auto* draws = static_cast<gpu::DrawRecord*>(in.scene.drawRecords.mapped());  // host-visible with deformers
   for (Deformers::Instance& i : d->instances) {
     const scene::Instance& src = scene.instances[i.sceneInstance];
     const scene::Instance& posed = i.sceneInstance < pose.instances.size() ? pose.instances[i.sceneInstance] : src;
@@ -193,6 +252,10 @@ void deformMeshes(graph::RenderGraph& graph, const FrameInputs& in, const scene:
       now.weights = scene::morphWeights(scene, withWeights, i.weightCount);
       std::memcpy(weights + i.weightOffset, now.weights.data(), i.weightCount * sizeof(float));
     }
+    // The draws' culling boxes follow the pose.
+    for (const Deformers::Primitive& p : i.primitives)
+      if (draws && p.draw != ~0u)
+        std::tie(draws[p.draw].aabbMin, draws[p.draw].aabbMax) = deformedBounds(p.bounds, now);
     // Refit while the pose stays close enough to the last build's (refitDrift()), else rebuild.
     // Without traced passes this frame no BLAS is touched: the last build's pose stays.
     const float size = glm::length(i.reach.restMax - i.reach.restMin);

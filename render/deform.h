@@ -6,7 +6,8 @@
 // those buffers, so every pass — raster, traced and the path tracer — sees the pose; on devices
 // with ray tracing it has a BLAS of its own, refitted after each deformation and rebuilt when the
 // refit's boxes have grown loose: when refitDrift() since the last build passes kRefitDriftLimit
-// of the mesh's size (and at the first frame of a run).
+// of the mesh's size (and at the first frame of a run). Each deforming draw's culling box is
+// rewritten with the pose (deformedBounds()), so deforming meshes are culled as static ones are.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -48,6 +49,23 @@ struct DeformReach {
 // its weight changed.
 float refitDrift(const DeformReach& reach, const DeformPose& built, const DeformPose& now);
 
+// What bounds one deforming primitive in any pose: its rest box, each morph target's per-axis
+// range of position deltas, the joints its vertices are weighted to, and whether some vertex has no weight
+// (the deform pass leaves it in mesh space).
+struct DeformBounds {
+  glm::vec3 restMin{0.0f}, restMax{0.0f};
+  std::vector<glm::vec3> targetMin, targetMax;  // per target: the smallest and largest delta, per axis
+  std::vector<uint32_t> joints;                 // ascending, each once
+  bool unweighted = true;
+};
+DeformBounds deformBounds(const scene::Primitive& primitive, bool skinned);
+// A box holding every vertex of the primitive in `pose`, in its instance's object space (a skinned
+// instance's is the world): the rest box grown on each axis by each target's delta range × its
+// weight (a morphed component is the rest one plus Σ weight × delta), then the union
+// of its images under every joint it is weighted to (a skinned position is a convex blend of its
+// joints' images of the morphed position), and the widened box itself where a vertex has no weight.
+std::pair<glm::vec3, glm::vec3> deformedBounds(const DeformBounds& bounds, const DeformPose& pose);
+
 struct Deformers {
   // A BLAS is rebuilt once refitDrift() since its build passes this share of the mesh's rest-box
   // diagonal: its refitted boxes may then be a tenth of the mesh wider on every side.
@@ -56,6 +74,8 @@ struct Deformers {
   struct Primitive {
     gpu::DeformPush push{};  // joints and weights addresses set per frame
     rhi::Buffer vertices, previous, influences, targets;
+    DeformBounds bounds;
+    uint32_t draw = ~0u;  // its GpuScene::draws row, whose DrawRecord box the pose rewrites
   };
   struct Instance {
     uint32_t sceneInstance = 0;

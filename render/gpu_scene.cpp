@@ -259,10 +259,13 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
     tlasDeformer.push_back(deforming ? int32_t(gs.deformers->instances.size() - 1) : -1);
     instanceRows.push_back({inst.worldFromObject, glm::inverseTranspose(inst.worldFromObject), firstGeometry, mask, 0,
                             0, inst.worldFromObject});
-    for (uint32_t p = 0; p < mesh.primitives.size(); ++p)
+    for (uint32_t p = 0; p < mesh.primitives.size(); ++p) {
+      // A deforming draw's box is rewritten with each pose (render/deform.h).
+      if (deforming) gs.deformers->instances.back().primitives[p].draw = uint32_t(gs.draws.size());
       gs.draws.push_back({row, firstGeometry + p, uint32_t(mesh.primitives[p].indices.size()), false, inst.castsShadows,
                           cullsBackFaces(scene, mesh.primitives[p].material), meshBounds[inst.mesh][p].first,
-                          meshBounds[inst.mesh][p].second, deforming});
+                          meshBounds[inst.mesh][p].second});
+    }
     if (!mesh.spheres.empty())
       gs.draws.push_back({row, meshFirstGeometry[inst.mesh] + uint32_t(mesh.primitives.size()),
                           uint32_t(mesh.spheres.size()), true, inst.castsShadows, false,
@@ -307,10 +310,16 @@ Result<GpuScene> uploadScene(rhi::Context& ctx, const scene::Scene& scene) {
   gs.lights = tableBuffer(ctx, lightRows, "lights");
   std::vector<gpu::DrawRecord> drawRows;
   for (const GpuScene::Draw& d : gs.draws)
-    drawRows.push_back({d.instance, d.geometry, d.count,
-                        (d.spheres ? gpu::kDrawSpheres : 0u) | (d.unbounded ? gpu::kDrawUnbounded : 0u), d.aabbMin,
-                        d.aabbMax});
-  gs.drawRecords = tableBuffer(ctx, drawRows, "draw-records");
+    drawRows.push_back({d.instance, d.geometry, d.count, d.spheres ? gpu::kDrawSpheres : 0u, d.aabbMin, d.aabbMax});
+  if (gs.deformers) {
+    // The deforming draws' boxes are rewritten by the host with every pose (frames are serialised).
+    const size_t bytes = drawRows.size() * sizeof(gpu::DrawRecord);
+    gs.drawRecords =
+        rhi::Buffer(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, rhi::MemoryUsage::Upload, "draw-records");
+    std::memcpy(gs.drawRecords.mapped(), drawRows.data(), bytes);
+  } else {
+    gs.drawRecords = tableBuffer(ctx, drawRows, "draw-records");
+  }
   gs.cull = createCullBuffers(ctx, uint32_t(gs.draws.size()));
   uploadEmissiveTriangles(ctx, scene, meshFirstGeometry, gs);
   for (const auto& inputs : blasInputs)

@@ -41,8 +41,8 @@ struct GpuScene {
     bool spheres;
     bool castsShadows = true;     // false for a light's visible shape (no shadow-map draw)
     bool cullsBackFaces = false;  // scene::Material::cullsBackFaces(): rays (and shadow maps) skip back faces
-    glm::vec3 aabbMin{0.0f}, aabbMax{0.0f};  // object space: what GPU culling tests
-    bool unbounded = false;                  // deforming (render/deform.h): its bounds move, never culled
+    glm::vec3 aabbMin{0.0f}, aabbMax{0.0f};  // object space at upload: what GPU culling tests (deforming
+                                             // draws: the DrawRecord's box follows the pose, render/deform.h)
   };
   std::vector<rhi::Buffer> vertexBuffers;  // one per primitive (AABBs for sphere sets)
   std::vector<rhi::Buffer> indexBuffers;   // one per primitive (SphereRecords for sphere sets)
@@ -57,7 +57,9 @@ struct GpuScene {
   rhi::Buffer emissiveTriangles;  // gpu::EmissiveTriangle[] (render/gpu_emissive.cpp)
   uint32_t emissiveTriangleCount = 0;
   float emissiveArea = 0.0f;
-  rhi::Image environmentPrefiltered;  // built once at upload; glossy environment light of the raster mode
+  bool emissiveFollowsPose = false;         // an emitter is animated or deforms: poseEmissiveTriangles()
+  std::vector<uint32_t> meshFirstGeometry;  // kept for it: each mesh's first GeometryRecord row
+  rhi::Image environmentPrefiltered;        // built once at upload; glossy environment light of the raster mode
   GpuEnvironment environment;
   rhi::Image dfgTable;               // split-sum DFG (render/dfg.h), RG16F
   uint32_t dfgSlot = 0xFFFFFFFFu;    // its bindless slot
@@ -120,6 +122,9 @@ void uploadEnvironment(rhi::Context& ctx, const scene::Scene& scene, GpuScene& g
 // mesh's first GeometryRecord row.
 void uploadEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene,
                              const std::vector<uint32_t>& meshFirstGeometry, GpuScene& gs);
+// Lists the emissive triangles again for `pose` (the scene as animated now, or `scene`) where an
+// emitter follows the pose; waits for the device first. The path tracer calls it once it posed the scene.
+void poseEmissiveTriangles(rhi::Context& ctx, const scene::Scene& scene, const scene::Scene& pose, GpuScene& gs);
 // The split-sum DFG table of glossy reflections and the sheen albedo table, into the bindless array
 // (render/gpu_environment.cpp).
 void uploadDfgTable(rhi::Context& ctx, GpuScene& gs);

@@ -276,6 +276,8 @@ Result<RenderOutput> Renderer::Impl::renderPathTraced(const RenderSettings& s) {
       log::info("exposure: auto, EV100 {:.2f} (metered by the hybrid)", exposure.ev100());
     }
   }
+  // Emitters that are animated or deform light from that pose too.
+  poseEmissiveTriangles(ctx, scene, motion.pose(scene, scene.animated() && !gpu.instanceRecords.empty()), gpu);
   // A camera on an animated node: where the posing frame left it.
   const scene::Camera posedCamera = motion.camera(scene, **cam, scene.animated() && !gpu.instanceRecords.empty());
   *cam = &posedCamera;

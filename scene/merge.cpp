@@ -26,7 +26,7 @@ glm::vec3 transformDirection(const glm::mat4& m, glm::vec3 d) {
 
 void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
   const size_t meshBase = dst.meshes.size(), materialBase = dst.materials.size(), imageBase = dst.images.size(),
-               samplerBase = dst.samplers.size(), textureBase = dst.textures.size();
+               samplerBase = dst.samplers.size(), textureBase = dst.textures.size(), skinBase = dst.skins.size();
 
   // Variants of the same name in two models are one variant of the scene.
   std::vector<uint32_t> variantOf(src.variants.size());
@@ -75,10 +75,17 @@ void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
     for (AnimationChannel& channel : animation.channels) channel.node = rebase(channel.node, nodeBase);
     dst.animations.push_back(std::move(animation));
   }
+  for (Skin& skin : src.skins) {
+    for (uint32_t& joint : skin.joints) joint = rebase(joint, nodeBase);
+    dst.skins.push_back(std::move(skin));
+  }
 
   for (Instance& instance : src.instances) {
     instance.mesh = rebase(instance.mesh, meshBase);
-    instance.worldFromObject = transform * instance.worldFromObject;
+    // A skinned instance is placed by its joints, which hang under the placement; its own
+    // transform stays the identity.
+    if (instance.skin < 0) instance.worldFromObject = transform * instance.worldFromObject;
+    if (instance.skin >= 0) instance.skin = int32_t(rebase(uint32_t(instance.skin), skinBase));
     if (instance.node >= 0) instance.node = int32_t(rebase(uint32_t(instance.node), nodeBase));
     dst.instances.push_back(std::move(instance));
   }
@@ -89,12 +96,14 @@ void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
     light.position = transformPoint(transform, light.position);
     light.direction = transformDirection(transform, light.direction);
     if (std::isfinite(meanScale)) light.radius *= meanScale;
+    if (light.node >= 0) light.node = int32_t(rebase(uint32_t(light.node), nodeBase));
     dst.lights.push_back(std::move(light));
   }
   for (Camera& camera : src.cameras) {
     camera.position = transformPoint(transform, camera.position);
     camera.target = transformPoint(transform, camera.target);
     camera.up = transformDirection(transform, camera.up);
+    if (camera.node >= 0) camera.node = int32_t(rebase(uint32_t(camera.node), nodeBase));
     dst.cameras.push_back(std::move(camera));
   }
 

@@ -6,7 +6,7 @@
 
 namespace rayster::scene {
 
-// Moves src into dst with every mesh/material/texture/image/sampler index re-based, and instances,
+// Moves src into dst with every mesh/material/texture/image/sampler/skin/node index re-based, and instances,
 // lights, cameras and camera-path keys moved by `transform` (worldFromModel). src's node hierarchy
 // hangs under a new fixed root node holding `transform`; its animations follow their nodes. Sphere-light radii
 // scale with the transform's mean scale; directions are re-normalised. dst keeps its environment,

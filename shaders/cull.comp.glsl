@@ -80,10 +80,7 @@ void main() {
   if (id >= pc.drawCount) return;
   DrawRecord d = DrawRecords(pc.records).d[id];
   bool late = (pc.flags & kCullLate) != 0u;
-  // Deforming geometry has no fixed bounds: drawn in the early phase, untested.
-  bool unbounded = (d.flags & kDrawUnbounded) != 0u;
-  if (unbounded && late) return;
-  if ((pc.flags & kCullFrustum) != 0u && !unbounded) {
+  if ((pc.flags & kCullFrustum) != 0u) {
     DrawVisibility visibility = DrawVisibility(pc.visibility);
     InstanceRecord inst = Instances(frame.instances).i[d.instance];
     mat4 clipFromObject = frame.clipFromWorld * inst.worldFromObject;

@@ -282,16 +282,13 @@ struct FrameConstants {
 
 // GPU culling (render/passes/cull.cpp, docs/techniques.md §23): one row per GpuScene::Draw, in order.
 RAYSTER_CONST uint kDrawSpheres = 1u;  // DrawRecord::flags: a sphere set (36-vertex boxes, count instances)
-// DrawRecord::flags: deforming geometry, whose bounds move with its pose: never culled (drawn in the
-// early phase).
-RAYSTER_CONST uint kDrawUnbounded = 2u;
 RAYSTER_CONST uint kCullGroupSize = 64u;
 struct DrawRecord {
   uint instance;  // InstanceRecord row
   uint geometry;  // GeometryRecord row
   uint count;     // triangles: index count; spheres: sphere count
   uint flags;     // kDrawSpheres
-  vec3 aabbMin;   // object space
+  vec3 aabbMin;   // object space (deforming draws: rewritten with each pose, render/deform.h)
   vec3 aabbMax;
 };
 

@@ -122,5 +122,27 @@ TEST(Culling, ObjectsTurningIntoViewAreDrawnThatFrame) {
   EXPECT_GT(on.visible, 20) << "facing the grid, most bunnies are drawn";
 }
 
+// A skinned mesh is culled by the box of its pose (render/deform.h deformedBounds()): of two copies
+// of Debian's simple_skin, the one 50 m to the side is not drawn, the one in view is, and playing
+// the animation draws exactly what drawing everything draws.
+TEST(Culling, DeformingMeshOutsideTheViewIsCulled) {
+  const std::filesystem::path model = "/usr/share/assimp/models/glTF2/simple_skin/simple_skin.gltf";
+  if (!std::filesystem::exists(model)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  auto dir = testDir();
+  auto file = dir / "skins.json";
+  std::ofstream(file)
+      << R"({"models": [{"path": "simple_skin.gltf"}, {"path": "simple_skin.gltf", "translate": [50, 0, 0]}],
+  "cameras": [{"position": [0.5, 1, 4], "target": [0.5, 1, 0], "yfov": 45}]})";
+  std::filesystem::copy_file(model, dir / "simple_skin.gltf", std::filesystem::copy_options::overwrite_existing);
+  const std::string scene = file.string() + " --mode raster --path-fps 4 --time 0.5";
+  const Culled still = renderCulled(dir, "still", scene + " --frames 1 --pause", true);
+  EXPECT_EQ(still.total, 2);
+  EXPECT_EQ(still.visible, 1) << "the copy outside the view should be culled";
+  const Culled on = renderCulled(dir, "playing", scene + " --frames 4", true);
+  const Culled off = renderCulled(dir, "playing", scene + " --frames 4", false);
+  expectSameImage(on.image, off.image, "a bending skin");
+  EXPECT_EQ(on.visible, 1);
+}
+
 }  // namespace
 }  // namespace rayster::test

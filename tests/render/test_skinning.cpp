@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/image_io.h"
 #include "core/metrics.h"
@@ -141,6 +143,49 @@ TEST(Deformation, PathTracerRendersThePoseOfTime) {
   const ImageDiff moved = compare(at0, at1, 8), same = compare(copy, at1, 8);
   EXPECT_LT(moved.fractionWithinTolerance, 0.97) << "the poses at --time 0 and 1 should differ";
   EXPECT_GT(same.fractionWithinTolerance, 0.99) << "--time 1 should path-trace like the static copy of its pose";
+}
+
+// A deforming emitter lights the path tracer's scene from where its pose puts it: the emissive
+// triangles it samples (render/gpu_emissive.cpp) follow the pose of --time, as its BLAS does.
+// simple_skin's strip made emissive, the only light, standing on a floor: path-traced at --time 1
+// it lights the floor as the static copy of that pose does (the rest pose's upright strip lights
+// it differently where the strip bends away).
+TEST(Deformation, PathTracedDeformingEmitterLightsFromItsPose) {
+  const fs::path file = kModels / "simple_skin/simple_skin.gltf";
+  if (!fs::exists(file)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  const fs::path dir = testDir();
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(file));
+  doc["materials"] = {{{"emissiveFactor", {1.0, 1.0, 1.0}}, {"doubleSided", true}}};
+  doc["meshes"][0]["primitives"][0]["material"] = 0;
+  const fs::path emitter = dir / "emissive_skin.gltf";
+  std::ofstream(emitter) << doc.dump();
+  auto loaded = scene::loadScene(emitter.string());
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  ASSERT_GT(relativeDeformation(*loaded, 1.0f), 0.05f);
+  scene::Scene posed = *loaded;
+  scene::evaluateAnimations(posed, 1.0f);
+  const fs::path baked = writeBakedGltf(
+      scene::bakePose(posed), loaded->cameras.empty() ? scene::Camera{} : loaded->cameras.front(), dir / "baked.gltf");
+  std::ofstream(dir / "floor.mtl") << "newmtl grey\nKd 0.8 0.8 0.8\nNs 0\nillum 1\n";
+  std::ofstream(dir / "floor.obj") << "mtllib floor.mtl\nusemtl grey\n"
+                                      "v -3 -0.01 3\nv 4 -0.01 3\nv 4 -0.01 -3\nv -3 -0.01 -3\nf 1 2 3 4\n";
+  // The scene's only light is the strip: a light of intensity 0 keeps the default sun away.
+  auto sceneFile = [&](const fs::path& model, const char* name) {
+    const fs::path path = dir / name;
+    std::ofstream(path) << R"({"models": [{"path": ")" << model.filename().string() << R"("}, {"path": "floor.obj"}],
+      "lights": [{"type": "point", "position": [0, 50, 0], "intensity": 0}],
+      "cameras": [{"position": [0.5, 3.5, 4.5], "target": [0.5, 0.3, 0], "yfov": 50}]})";
+    return path.string();
+  };
+  const std::string common = " --mode pathtrace --spp 32 --seed 3 --exposure 0";
+  Image8 at0 = renderOk(dir, "t0", sceneFile(emitter, "animated.json") + common + " --time 0", kW, kH);
+  Image8 at1 = renderOk(dir, "t1", sceneFile(emitter, "animated.json") + common + " --time 1", kW, kH);
+  Image8 copy = renderOk(dir, "copy", sceneFile(baked, "baked.json") + common, kW, kH);
+  ASSERT_FALSE(HasFailure());
+  const ImageDiff moved = compare(at0, at1, 8), same = compare(copy, at1, 8);
+  EXPECT_LT(moved.fractionWithinTolerance, 0.97) << "the poses at --time 0 and 1 should light the floor differently";
+  EXPECT_GT(same.fractionWithinTolerance, 0.99)
+      << "--time 1 should light the floor as the static copy of its pose does (rmse " << same.rmse << ")";
 }
 
 // A playing skin has motion vectors where it moves.

@@ -11,7 +11,9 @@
 #include "core/log.h"
 #include "gltf_test_util.h"
 #include "scene/animation.h"
+#include "scene/loader.h"
 #include "scene/merge.h"
+#include "scene/skinning.h"
 
 using namespace rayster;
 using namespace rayster::test;
@@ -289,6 +291,41 @@ TEST(Animation, PlacementFromASceneFileIsKept) {
   expectNear(position(world, "translated"), {102, 1, 0});
   expectNear(position(world, "child"), {101, 5, 0});
   expectNear(position(world, "static"), {100, 0, -5});
+}
+
+// A skinned model placed by a scene file: its skin, joints and the lights and cameras on its nodes
+// come along re-based, and the posed mesh is the model's own pose moved by the placement.
+TEST(Animation, PlacedSkinsLightsAndCamerasFollowThePlacement) {
+  const fs::path file = "/usr/share/assimp/models/glTF2/simple_skin/simple_skin.gltf";
+  if (!fs::exists(file)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  auto loaded = scene::loadScene(file.string());
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  scene::Scene model = *loaded;
+  const uint32_t lightNode = model.skins[0].joints.back();
+  model.lights.push_back({});
+  model.lights.back().node = int32_t(lightNode);
+  model.cameras.push_back({});
+  model.cameras.back().node = int32_t(lightNode);
+  scene::Scene world;
+  world.nodes.push_back({});  // something already there: indices must be re-based
+  world.skins.push_back({"other", {0}, {glm::mat4(1.0f)}});
+  const glm::vec3 offset(100, 0, -3);
+  scene::appendScene(world, model, glm::translate(glm::mat4(1.0f), offset));
+  ASSERT_TRUE(scene::validate(world).ok()) << scene::validate(world).error().message;
+  for (float t : {0.0f, 1.3f}) {
+    scene::Scene alone = model, placed = world;
+    scene::evaluateAnimations(alone, t);
+    scene::evaluateAnimations(placed, t);
+    const scene::Instance& a = alone.instances[0];
+    const scene::Instance& b = placed.instances[0];
+    ASSERT_EQ(b.skin, 1);
+    const scene::Primitive pa = scene::deformPrimitive(alone, a, alone.meshes[a.mesh].primitives[0]);
+    const scene::Primitive pb = scene::deformPrimitive(placed, b, placed.meshes[b.mesh].primitives[0]);
+    ASSERT_EQ(pa.positions.size(), pb.positions.size());
+    for (size_t i = 0; i < pa.positions.size(); ++i) expectNear(pb.positions[i], pa.positions[i] + offset);
+    expectNear(placed.lights.back().position, alone.lights.back().position + offset);
+    expectNear(placed.cameras.back().position, alone.cameras.back().position + offset);
+  }
 }
 
 // glTF-Validator: ANIMATION_CHANNEL_TARGET_NODE_WEIGHTS_NO_MORPHS is an error (weights channels on
