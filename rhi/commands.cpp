@@ -5,10 +5,10 @@
 
 namespace rayster::rhi {
 
-CommandList::CommandList(Context& ctx) : ctx_(ctx) {
+CommandList::CommandList(Context& ctx, Queue queue) : ctx_(ctx), queue_(queue) {
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  pci.queueFamilyIndex = ctx.queueFamily();
+  pci.queueFamilyIndex = queue == Queue::Transfer ? ctx.transferFamily() : ctx.queueFamily();
   VK_CHECK(vkCreateCommandPool(ctx.device(), &pci, nullptr, &pool_));
   VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   ai.commandPool = pool_;
@@ -31,7 +31,12 @@ VkCommandBuffer CommandList::begin() {
 
 uint64_t CommandList::submit() {
   VK_CHECK(vkEndCommandBuffer(cmd_));
-  return ctx_.submit(cmd_);
+  return queue_ == Queue::Transfer ? ctx_.submitTransfer(cmd_) : ctx_.submit(cmd_);
+}
+
+uint64_t CommandList::submitAfterTransfer(uint64_t value) {
+  VK_CHECK(vkEndCommandBuffer(cmd_));
+  return ctx_.submitAfterTransfer(cmd_, value);
 }
 
 void OneShot::submitAndWait() { ctx_.wait(list_.submit()); }

@@ -10,20 +10,26 @@ namespace rayster::rhi {
 
 class Context;
 
-// A command pool with one primary command buffer, re-recorded each use.
+enum class Queue { Universal, Transfer };
+
+// A command pool with one primary command buffer, re-recorded each use, for the universal queue
+// or the transfer queue (Context::hasTransferQueue()).
 class CommandList {
  public:
-  explicit CommandList(Context& ctx);
+  explicit CommandList(Context& ctx, Queue queue = Queue::Universal);
   ~CommandList();
   CommandList(const CommandList&) = delete;
   CommandList& operator=(const CommandList&) = delete;
   VkCommandBuffer begin();  // resets and begins recording
-  uint64_t submit();        // ends and submits; returns the timeline value to wait for
+  uint64_t submit();        // ends and submits; returns the (its queue's) timeline value to wait for
+  // Universal lists only: ends and submits, its commands waiting for transfer submission `value`.
+  uint64_t submitAfterTransfer(uint64_t value);
   VkCommandBuffer handle() const { return cmd_; }
   operator VkCommandBuffer() const { return cmd_; }
 
  private:
   Context& ctx_;
+  Queue queue_;
   VkCommandPool pool_ = VK_NULL_HANDLE;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
 };

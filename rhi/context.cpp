@@ -329,14 +329,20 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     return makeError(ExitCode::MissingCapability, "{} lacks shaderInt64 or geometryShader", ctx->info_.name);
 
   float priority = 1.0f;
-  VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-  qci.queueFamilyIndex = ctx->queueFamily_;
-  qci.queueCount = 1;
-  qci.pQueuePriorities = &priority;
+  VkDeviceQueueCreateInfo qci[2] = {{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO},
+                                    {VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO}};
+  qci[0].queueFamilyIndex = ctx->queueFamily_;
+  qci[0].queueCount = 1;
+  qci[0].pQueuePriorities = &priority;
+  const char* transferEnv = std::getenv("RAYSTER_TRANSFER_QUEUE");
+  const bool transferWanted = options.transferQueue && !(transferEnv && std::strcmp(transferEnv, "0") == 0);
+  const uint32_t transferFamily = transferWanted ? pickTransferFamily(qf, ctx->queueFamily_) : UINT32_MAX;
+  qci[1] = qci[0];
+  qci[1].queueFamilyIndex = transferFamily;
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   dci.pNext = &features;
-  dci.queueCreateInfoCount = 1;
-  dci.pQueueCreateInfos = &qci;
+  dci.queueCreateInfoCount = transferFamily == UINT32_MAX ? 1 : 2;
+  dci.pQueueCreateInfos = qci;
   dci.enabledExtensionCount = uint32_t(exts.size());
   dci.ppEnabledExtensionNames = exts.data();
   VkResult r = vkCreateDevice(ctx->info_.handle, &dci, nullptr, &ctx->device_);
@@ -351,6 +357,12 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
   VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
   sci.pNext = &tci;
   VK_CHECK(vkCreateSemaphore(ctx->device_, &sci, nullptr, &ctx->timeline_));
+  if (transferFamily != UINT32_MAX) {
+    ctx->transferFamily_ = transferFamily;
+    vkGetDeviceQueue(ctx->device_, transferFamily, 0, &ctx->transferQueue_);
+    VK_CHECK(vkCreateSemaphore(ctx->device_, &sci, nullptr, &ctx->transferTimeline_));
+    log::debug("uploads: transfer queue family {}", transferFamily);
+  }
   ctx->memory_ = std::make_unique<MemoryAllocator>(*ctx);
   ctx->pipelineCache_ = std::make_unique<PipelineCache>(ctx->device_, ctx->info_.cacheKey);
   log::debug("device: {} ({}, {})", ctx->info_.name, ctx->info_.typeName(), ctx->info_.driverInfo);
@@ -366,6 +378,7 @@ Context::~Context() {
     garbage_.clear();
     memory_.reset();
     vkDestroySemaphore(device_, timeline_, nullptr);
+    if (transferTimeline_) vkDestroySemaphore(device_, transferTimeline_, nullptr);
     vkDestroyDevice(device_, nullptr);
   }
   if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
@@ -399,6 +412,56 @@ uint64_t Context::submit(VkCommandBuffer cmd, VkSemaphore wait, VkSemaphore sign
   si.pWaitSemaphoreInfos = &waitInfo;
   VK_CHECK(vkQueueSubmit2(queue_, 1, &si, VK_NULL_HANDLE));
   return submitted_;
+}
+
+uint64_t Context::submitAfterTransfer(VkCommandBuffer cmd, uint64_t transferValue) {
+  VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cbi.commandBuffer = cmd;
+  VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  signal.semaphore = timeline_;
+  signal.value = ++submitted_;
+  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  VkSemaphoreSubmitInfo waitInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  waitInfo.semaphore = transferTimeline_;
+  waitInfo.value = transferValue;
+  waitInfo.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  si.commandBufferInfoCount = 1;
+  si.pCommandBufferInfos = &cbi;
+  si.signalSemaphoreInfoCount = 1;
+  si.pSignalSemaphoreInfos = &signal;
+  si.waitSemaphoreInfoCount = transferTimeline_ && transferValue ? 1 : 0;
+  si.pWaitSemaphoreInfos = &waitInfo;
+  VK_CHECK(vkQueueSubmit2(queue_, 1, &si, VK_NULL_HANDLE));
+  return submitted_;
+}
+
+uint64_t Context::submitTransfer(VkCommandBuffer cmd) {
+  VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cbi.commandBuffer = cmd;
+  VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  signal.semaphore = transferTimeline_;
+  signal.value = ++transferSubmitted_;
+  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  si.commandBufferInfoCount = 1;
+  si.pCommandBufferInfos = &cbi;
+  si.signalSemaphoreInfoCount = 1;
+  si.pSignalSemaphoreInfos = &signal;
+  VK_CHECK(vkQueueSubmit2(transferQueue_, 1, &si, VK_NULL_HANDLE));
+  return transferSubmitted_;
+}
+
+uint32_t pickTransferFamily(const std::vector<VkQueueFamilyProperties>& families, uint32_t universalFamily) {
+  for (uint32_t i = 0; i < families.size(); ++i) {
+    const VkQueueFamilyProperties& f = families[i];
+    const VkExtent3D g = f.minImageTransferGranularity;
+    if (i != universalFamily && f.queueCount > 0 && (f.queueFlags & VK_QUEUE_TRANSFER_BIT) &&
+        !(f.queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) && g.width == 1 && g.height == 1 &&
+        g.depth == 1)
+      return i;
+  }
+  return UINT32_MAX;
 }
 
 void Context::wait(uint64_t value) {

@@ -1,7 +1,7 @@
 #pragma once
-// The Vulkan instance, the chosen physical device, the logical device and its one universal queue.
-// Also owns the memory allocator, the timeline semaphore that orders submissions and the deferred
-// destruction list ("destroyed a frame later").
+// The Vulkan instance, the chosen physical device, the logical device, its universal queue and,
+// where the device has one, a transfer-only queue for uploads (its copy engine). Also owns the memory allocator, the
+// timeline semaphore that orders submissions and the deferred destruction list ("destroyed a frame later").
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -45,6 +45,11 @@ struct DeviceInfo {
   const char* typeName() const;
 };
 
+// The queue family for uploads beside the universal one: a family that can transfer but neither
+// draw nor compute (a copy engine, which runs while the universal queue builds and renders) and
+// copies images of any size (granularity 1×1×1); UINT32_MAX when the device has none.
+uint32_t pickTransferFamily(const std::vector<VkQueueFamilyProperties>& families, uint32_t universalFamily);
+
 struct ContextOptions {
   bool validation = false;        // Khronos validation layer + synchronization validation
   bool requireRayTracing = true;  // fail with MissingCapability when absent
@@ -55,6 +60,7 @@ struct ContextOptions {
   // queue that can present to that surface.
   std::vector<std::string> instanceExtensions;
   std::function<VkResult(VkInstance, VkSurfaceKHR*)> createSurface;
+  bool transferQueue = true;  // use a transfer-only queue where there is one (RAYSTER_TRANSFER_QUEUE=0: off)
 };
 
 class Context {
@@ -72,6 +78,9 @@ class Context {
   VkQueue queue() const { return queue_; }
   VkSurfaceKHR surface() const { return surface_; }  // VK_NULL_HANDLE when headless
   uint32_t queueFamily() const { return queueFamily_; }
+  // The transfer-only queue (pickTransferFamily()); UINT32_MAX / VK_NULL_HANDLE when not used.
+  bool hasTransferQueue() const { return transferQueue_ != VK_NULL_HANDLE; }
+  uint32_t transferFamily() const { return transferFamily_; }
   const DeviceInfo& info() const { return info_; }
   const Capabilities& caps() const { return info_.caps; }
   MemoryAllocator& memory() { return *memory_; }
@@ -88,6 +97,11 @@ class Context {
   // The same, also waiting for `wait` (binary, e.g. an acquired swapchain image) before any command
   // and signalling the binary semaphore `signal` (e.g. for presentation).
   uint64_t submit(VkCommandBuffer cmd, VkSemaphore wait, VkSemaphore signal);
+  // On the universal queue, its commands waiting for the transfer queue's submission `transferValue`.
+  uint64_t submitAfterTransfer(VkCommandBuffer cmd, uint64_t transferValue);
+  // On the transfer queue (hasTransferQueue()), signalling its own timeline; returns that value.
+  // Whatever such a submission uses is retired after a universal submission that waited for it.
+  uint64_t submitTransfer(VkCommandBuffer cmd);
   void wait(uint64_t timelineValue);
   void waitIdle();
   // Runs `destroy` once the GPU has finished every submission made so far.
@@ -108,6 +122,10 @@ class Context {
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;
   uint32_t queueFamily_ = 0;
+  VkQueue transferQueue_ = VK_NULL_HANDLE;
+  uint32_t transferFamily_ = UINT32_MAX;
+  VkSemaphore transferTimeline_ = VK_NULL_HANDLE;
+  uint64_t transferSubmitted_ = 0;
   DeviceInfo info_;
   bool validation_ = false;
   bool debugUtils_ = false;

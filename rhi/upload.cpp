@@ -48,18 +48,23 @@ Image createUploadImage(Context& ctx, ImageDesc& desc, bool generateMips, const 
   return Image(ctx, desc, name);
 }
 
-// Level 0 from the staging buffer, then each level a linear downsample of the previous one, on the
-// stored (UNORM) values, as glTF viewers do. Ends in SHADER_READ_ONLY_OPTIMAL.
-void recordImageUpload(VkCommandBuffer cmd, VkImage image, const ImageDesc& desc, VkBuffer staging,
-                       VkDeviceSize offset) {
-  const uint32_t w = desc.width, h = desc.height;
+// Level 0 from the staging buffer, left in TRANSFER_DST_OPTIMAL.
+void recordLevel0Copy(VkCommandBuffer cmd, VkImage image, const ImageDesc& desc, VkBuffer staging,
+                      VkDeviceSize offset) {
   mipBarrier(cmd, image, 0, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
              0, kTransfer, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   VkBufferImageCopy region{};
   region.bufferOffset = offset;
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {w, h, 1};
+  region.imageExtent = {desc.width, desc.height, 1};
   vkCmdCopyBufferToImage(cmd, staging, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+}
+
+// After recordLevel0Copy(): each further level a linear downsample of the previous one, on the
+// stored (UNORM) values, as glTF viewers do (blits: the universal queue). Ends in
+// SHADER_READ_ONLY_OPTIMAL.
+void recordMipsAndFinish(VkCommandBuffer cmd, VkImage image, const ImageDesc& desc) {
+  const uint32_t w = desc.width, h = desc.height;
   for (uint32_t m = 1; m < desc.mips; ++m) {
     mipBarrier(cmd, image, m - 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, kTransfer,
                VK_ACCESS_2_TRANSFER_WRITE_BIT, kTransfer, VK_ACCESS_2_TRANSFER_READ_BIT);
@@ -77,6 +82,26 @@ void recordImageUpload(VkCommandBuffer cmd, VkImage image, const ImageDesc& desc
   }
   mipBarrier(cmd, image, desc.mips - 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
              kTransfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, kShaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
+
+// Level 0 passes from the transfer queue's family to the universal one, staying in
+// TRANSFER_DST_OPTIMAL: the release half (on the transfer queue) when `release`, else the acquire
+// half (on the universal queue, after a semaphore wait for the release's submission).
+void handOverLevel0(VkCommandBuffer cmd, VkImage image, const Context& ctx, bool release) {
+  VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  b.srcStageMask = release ? kTransfer : VK_PIPELINE_STAGE_2_NONE;
+  b.srcAccessMask = release ? VK_ACCESS_2_TRANSFER_WRITE_BIT : 0;
+  b.dstStageMask = release ? VK_PIPELINE_STAGE_2_NONE : kTransfer;
+  b.dstAccessMask = release ? 0 : VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+  b.oldLayout = b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  b.srcQueueFamilyIndex = ctx.transferFamily();
+  b.dstQueueFamilyIndex = ctx.queueFamily();
+  b.image = image;
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.imageMemoryBarrierCount = 1;
+  dep.pImageMemoryBarriers = &b;
+  vkCmdPipelineBarrier2(cmd, &dep);
 }
 
 // Orders this command buffer's transfers before every command submitted after it on the queue
@@ -101,7 +126,8 @@ Image uploadImage(Context& ctx, ImageDesc desc, std::span<const std::byte> pixel
   Buffer staging(ctx, pixels.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging");
   std::memcpy(staging.mapped(), pixels.data(), pixels.size());
   OneShot cmd(ctx);
-  recordImageUpload(cmd, image.handle(), desc, staging.handle(), 0);
+  recordLevel0Copy(cmd, image.handle(), desc, staging.handle(), 0);
+  recordMipsAndFinish(cmd, image.handle(), desc);
   cmd.submitAndWait();
   return image;
 }
@@ -154,7 +180,23 @@ Image UploadBatch::image(ImageDesc desc, std::span<const std::byte> pixels, bool
   Image image = createUploadImage(ctx_, desc, generateMips, name);
   const Staged s = stage(pixels.size());
   std::memcpy(s.mapped, pixels.data(), pixels.size());
-  recordImageUpload(cmd(), image.handle(), desc, s.buffer, s.offset);
+  if (!ctx_.hasTransferQueue()) {
+    recordLevel0Copy(cmd(), image.handle(), desc, s.buffer, s.offset);
+    recordMipsAndFinish(cmd(), image.handle(), desc);
+    return image;
+  }
+  // The copy on the transfer queue, which runs beside whatever the universal queue does (the
+  // scene's BLAS builds); the mips where blits run.
+  if (!transfer_) {
+    transfer_ = std::make_unique<CommandList>(ctx_, Queue::Transfer);
+    transfer_->begin();
+    finish_ = std::make_unique<CommandList>(ctx_);
+    finish_->begin();
+  }
+  recordLevel0Copy(transfer_->handle(), image.handle(), desc, s.buffer, s.offset);
+  handOverLevel0(transfer_->handle(), image.handle(), ctx_, true);
+  handOverLevel0(finish_->handle(), image.handle(), ctx_, false);
+  recordMipsAndFinish(finish_->handle(), image.handle(), desc);
   return image;
 }
 
@@ -165,6 +207,16 @@ uint64_t UploadBatch::submit() {
     inFlight_.push_back(last_);
     ++submissions_;
     list_.reset();  // its pool is retired until the submission completes
+  }
+  if (transfer_) {
+    const uint64_t copied = transfer_->submit();
+    transfersBeforeLaterWork(finish_->handle());
+    last_ = finish_->submitAfterTransfer(copied);
+    inFlight_.push_back(last_);
+    submissions_ += 2;
+    // Retired at a universal value after the finishing submission, which waited for the copies.
+    finish_.reset();
+    transfer_.reset();
   }
   // The chunk in use is only ever appended to (its recorded copies may not have run yet), and it
   // is retired when a new one replaces it.

@@ -24,6 +24,11 @@ Image uploadImage(Context& ctx, ImageDesc desc, std::span<const std::byte> pixel
 // so the device copies while the host fills the next. Each command buffer ends in a barrier from
 // its transfers to every later command on the queue, so what is submitted afterwards (BLAS builds,
 // frames) may read the data without waiting on the host. wait() (or the destructor) waits once.
+// Where the device has a transfer-only queue (Context::hasTransferQueue()), an image's level 0 is
+// copied there and handed to the universal queue (a queue-family ownership transfer), whose
+// submission waits for the copies and then makes the mips: the copy engine uploads textures while
+// the universal queue builds the BLASes. Buffers stay on the universal queue (the BLAS builds
+// read them at once).
 class UploadBatch {
  public:
   explicit UploadBatch(Context& ctx);
@@ -54,6 +59,8 @@ class UploadBatch {
 
   Context& ctx_;
   std::unique_ptr<CommandList> list_;  // recording, or null
+  // With a transfer queue: the images' copies and releases, and their acquires and mips; or null.
+  std::unique_ptr<CommandList> transfer_, finish_;
   Buffer chunk_;
   VkDeviceSize used_ = 0;
   std::deque<uint64_t> inFlight_;  // timeline values of submitted chunks
