@@ -274,8 +274,10 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   // bounce); the G-buffer's lookup (gi-probe-sample) is then unused, and the graph culls it.
   ProbeLookup probeLookup;
   if (indirect) {
-    const graph::ImageHandle e =
-        traceProbeIrradiance(graph, in, gb, {frameIndex, s.seed, exposure.ratio(), moving}, probeLookup);
+    const graph::ImageHandle e = traceProbeIrradiance(
+        graph, in, gb,
+        {frameIndex, s.seed, exposure.ratio(), moving, camera.position, probeCascadesSetting(s), &probeCascades},
+        probeLookup);
     if (probes) o.indirectRaw = o.indirect = e;
   }
   if (specularPass) {

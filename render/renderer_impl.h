@@ -74,8 +74,9 @@ struct Renderer::Impl {
   const SpecularSurfaces specular;  // whether any material is smooth or transmissive enough to trace
   RasterFrame raster;               // the raster mode's passes (render/raster_frame.h)
   uint32_t frameIndex = 0;
-  InstanceMotion motion;    // animation and edits (render/instance_motion.h)
-  bool manyLights = false;  // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
+  ProbeCascadeState probeCascades;  // where the probe cascades' windows were (render/passes/gi_probes.cpp)
+  InstanceMotion motion;            // animation and edits (render/instance_motion.h)
+  bool manyLights = false;          // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
   // The exposure of each frame (render/exposure.h), and auto exposure's histogram: GPU-side, and
   // its host-visible copy, read after the frame's fence.
   ExposureControl exposure;

@@ -7,7 +7,8 @@
 // - more than kProbeBackfaceFraction back-face hits: the probe is inside geometry; it moves
 //   towards (and through) the nearest back face, a step per frame;
 // - else a surface nearer than kProbeMinFrontDistance × spacing: it moves away from it;
-// the offset stays within kProbeMaxOffset of the spacing per axis (a probe keeps its cell).
+// the offset stays within kProbeMaxOffset of the spacing per axis (a probe keeps its cell); spacings
+// are the probe's cascade's.
 // A probe is inactive (left out of every lookup) while it is still inside geometry, or when no
 // surface is within a cell diagonal of it (no shaded point can be near it).
 // Output (RGBA16F, texel (probe, 0)): xyz the offset, w 1 active / 0 inactive.
@@ -23,7 +24,9 @@ layout(push_constant, scalar) uniform Push { ProbeGrid grid; };
 void main() {
   uint probe = gl_GlobalInvocationID.x;
   if (probe >= probeCount(grid)) return;
-  vec3 offset = (grid.flags & kProbeDataValid) != 0u ? texelFetch(previousData, ivec2(probe, 0), 0).xyz : vec3(0.0);
+  // A probe that just entered its cascade's window (shared/probes.h) starts at its lattice point.
+  bool known = (grid.flags & kProbeDataValid) != 0u && !probeFresh(grid, probe);
+  vec3 offset = known ? texelFetch(previousData, ivec2(probe, 0), 0).xyz : vec3(0.0);
   uint backfaces = 0u;
   float closestBack = 1e30, closestFront = 1e30;
   vec3 backDir = vec3(0.0), frontDir = vec3(0.0);
@@ -42,13 +45,15 @@ void main() {
       frontDir = dir;
     }
   }
-  float spacing = min(grid.spacing.x, min(grid.spacing.y, grid.spacing.z));
+  uint k = probeCascade(grid, probe);
+  vec3 cellSize = probeSpacing(grid, k);
+  float spacing = probeMinSpacing(grid, k);
   bool inside = float(backfaces) > kProbeBackfaceFraction * float(grid.raysPerProbe);
   if (inside)
     offset += backDir * (closestBack + kProbeMinFrontDistance * spacing);
   else if (closestFront < kProbeMinFrontDistance * spacing)
     offset -= frontDir * (kProbeMinFrontDistance * spacing - closestFront);
-  offset = clamp(offset, -kProbeMaxOffset * grid.spacing, kProbeMaxOffset * grid.spacing);
-  bool nearSurface = min(closestFront, closestBack) <= length(grid.spacing);
+  offset = clamp(offset, -kProbeMaxOffset * cellSize, kProbeMaxOffset * cellSize);
+  bool nearSurface = min(closestFront, closestBack) <= length(cellSize);
   imageStore(outData, ivec2(probe, 0), vec4(offset, !inside && nearSurface ? 1.0 : 0.0));
 }

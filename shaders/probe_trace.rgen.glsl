@@ -53,7 +53,8 @@ const uint kProbeStream = 0x9e3779b9u;
 
 void main() {
   uint r = gl_LaunchIDEXT.x, probe = gl_LaunchIDEXT.y;
-  vec3 origin = probePosition(grid, probeCoord(grid, probe)) + probeData(grid, probe).xyz;
+  // A probe that just entered its cascade's window has no offset yet (its data is another point's).
+  vec3 origin = probeWorldPosition(grid, probe) + (probeFresh(grid, probe) ? vec3(0.0) : probeData(grid, probe).xyz);
   vec3 dir = probeRayDirection(grid, r);
   uint rng = rngInit(uvec2(r, probe), frame.frameIndex, frame.seed ^ kProbeStream);
   payload.t = -1.0;

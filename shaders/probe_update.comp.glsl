@@ -74,12 +74,14 @@ void main() {
   }
   vec4 value = weightSum > 1e-6 ? sum / weightSum : vec4(0.0);
   ivec2 at = probeTileOrigin(grid, probe, TEXELS) + texel;
+  // A probe that just entered its cascade's window: the previous tile is another place's light.
+  bool history = (grid.flags & kProbeHistoryValid) != 0u && !probeFresh(grid, probe);
 #ifdef PROBE_VISIBILITY
-  if ((grid.flags & kProbeHistoryValid) != 0u) value = mix(value, texelFetch(previousAtlas, at, 0), grid.hysteresis);
+  if (history) value = mix(value, texelFetch(previousAtlas, at, 0), grid.hysteresis);
 #else
   value.rgb *= kPi;
   vec3 bounce = weightSum > 1e-6 ? kPi * bounceSum / weightSum : vec3(0.0);
-  if ((grid.flags & kProbeHistoryValid) != 0u) {
+  if (history) {
     // exposed with last frame's exposure
     vec3 previous = texelFetch(previousAtlas, at, 0).rgb * grid.historyScale;
     vec3 previousBounceE = texelFetch(previousBounce, at, 0).rgb * grid.historyScale;

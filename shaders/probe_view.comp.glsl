@@ -4,7 +4,7 @@
 #include "shared/probes.h"
 
 // The probes' debug view (gi-probe-view, render/passes/gi_probe_view.cpp): the lit image with every
-// probe drawn as a sphere of radius kProbeViewRadius × the grid's smallest spacing at its relocated
+// probe drawn as a sphere of radius kProbeViewRadius × its cascade's smallest spacing at its relocated
 // position, in front of the G-buffer's surface only. An active probe's sphere shows the probe's
 // irradiance E in the direction of the sphere's normal, over π (a white Lambert ball lit by it); an
 // inactive one is dark red. Output (RGBA16F): linear HDR, pre-exposed like its input.
@@ -29,12 +29,12 @@ void main() {
   vec3 dir = cameraRayDirection(frame.worldFromClip, uv, origin);
   float depth = texelFetch(depthTex, px, 0).r;
   float tSurface = isBackground(depth) ? 1e30 : distance(origin, worldFromDepth(frame.worldFromClip, uv, depth));
-  float radius = kProbeViewRadius * min(grid.spacing.x, min(grid.spacing.y, grid.spacing.z));
   float tBest = tSurface;
   uint best = 0xffffffffu;
   vec3 bestCentre = vec3(0.0);
   for (uint i = 0u; i < probeCount(grid); ++i) {
-    vec3 centre = probePosition(grid, probeCoord(grid, i)) + texelFetch(probeDataTex, ivec2(i, 0), 0).xyz;
+    vec3 centre = probeWorldPosition(grid, i) + texelFetch(probeDataTex, ivec2(i, 0), 0).xyz;
+    float radius = kProbeViewRadius * probeMinSpacing(grid, probeCascade(grid, i));
     vec3 oc = origin - centre;
     float b = dot(oc, dir), c = dot(oc, oc) - radius * radius, disc = b * b - c;
     if (disc < 0.0) continue;

@@ -1,12 +1,12 @@
 // Dynamic diffuse GI from irradiance probes (DDGI; --gi probes, docs/techniques.md §16b): a probe
-// grid fitted to the scene's bounds; each frame every probe traces kProbeRaysPerProbe rays in a
-// randomly rotated spherical-Fibonacci set (gi-probe-trace), the rays relocate probes out of
-// geometry and classify them active or not (gi-probe-classify), update each probe's
-// octahedral irradiance and distance-moment tiles with hysteresis (gi-probe-update-irradiance,
-// gi-probe-update-visibility; the atlases are graph histories), and every G-buffer pixel looks up
-// its irradiance from the eight probes around it with Chebyshev visibility (gi-probe-sample). Probe
-// rays shade their hits with the probes of the frame before, so light bounces once more every
-// frame. The result takes the one-bounce path's place as the diffuse indirect light.
+// grid fitted to the scene's bounds, and in a large scene finer cascades of it around the camera
+// (fitProbeGrid; their windows scroll with it, only the probes that enter one start afresh); each frame every probe
+// traces kProbeRaysPerProbe rays in a randomly rotated spherical-Fibonacci set (gi-probe-trace), the rays relocate
+// probes out of geometry and classify them active or not (gi-probe-classify), update each probe's octahedral irradiance
+// and distance-moment tiles with hysteresis (gi-probe-update-irradiance, gi-probe-update-visibility; the atlases are
+// graph histories), and every G-buffer pixel looks up its irradiance from the eight probes around it with Chebyshev
+// visibility (gi-probe-sample). Probe rays shade their hits with the probes of the frame before, so light bounces once
+// more every frame. The result takes the one-bounce path's place as the diffuse indirect light.
 #include <algorithm>
 #include <cmath>
 
@@ -25,7 +25,18 @@ const PassSetting kGi{
                "bounces) or path (one denoised bounce ray per pixel, its hits lit by the probes)",
                {"path", "probes"}, "probes")};
 
-constexpr uint32_t kMaxProbesPerAxis = 8;   // on the scene's longest axis
+const PassSetting kCascades{
+    passChoice("probe-cascades", "Effects",
+               "Probe cascades: auto (as many as bring the finest probe spacing near 1 m, the finer ones following the "
+               "camera) or 1..4",
+               {"auto", "1", "2", "3", "4"}, "auto")};
+
+constexpr uint32_t kMaxProbesPerAxis = 8;  // per cascade, on the scene's longest axis
+// --probe-cascades auto: cascades are added (each halving the spacing) until the finest spacing is
+// at most this, in scene units (glTF: metres): a scene longer than about 7 × this on some axis is
+// large and gets cascades around the camera (the built-in whitted and cornell scenes do not).
+constexpr float kProbeTargetSpacing = 2.5f;
+constexpr uint32_t kMinCascadeCounts = 4;   // probes per axis and cascade once there are several
 constexpr float kMaxHysteresis = 0.97f;     // the blend's weight of the previous atlas once converged
 constexpr float kMovingHysteresis = 0.85f;  // while the camera or an object moves: follow in a few frames
 // The light that came through the probes: multiple bounces converge at a rate of about
@@ -56,8 +67,15 @@ glm::vec4 frameRotation(uint32_t frame, uint32_t seed) {
   return {a * std::sin(t2), a * std::cos(t2), b * std::sin(t3), b * std::cos(t3)};
 }
 
-gpu::ProbeGrid fitGrid(const scene::Aabb& sceneBounds) {
-  scene::Aabb b = sceneBounds;
+}  // namespace
+
+uint32_t probeCascadesSetting(const RenderSettings& settings) {
+  const std::string v = passSettingText(settings, "probe-cascades");
+  return v == "auto" ? 0u : uint32_t(std::stoul(v));
+}
+
+gpu::ProbeGrid fitProbeGrid(glm::vec3 boundsMin, glm::vec3 boundsMax, glm::vec3 eye, uint32_t cascades) {
+  scene::Aabb b{boundsMin, boundsMax};
   if (!b.valid()) b = {glm::vec3(-1.0f), glm::vec3(1.0f)};
   const glm::vec3 extent = glm::max(b.max - b.min, glm::vec3(1e-3f));
   // Probes a little inside the bounds' faces would sit on the walls; a small margin keeps them off.
@@ -73,8 +91,51 @@ gpu::ProbeGrid fitGrid(const scene::Aabb& sceneBounds) {
     g.spacing[a] = std::max(inner[a] / float(n - 1), 1e-3f);
   }
   g.origin = b.min;
+  // Cascades: each finer one halves the spacing on every axis still coarser than the finest
+  // spacing wanted (auto: kProbeTargetSpacing, or what kMaxProbeCascades reach; n asked for: the
+  // longest axis' spacing ÷ 2^(n−1)).
+  const float coarsest = std::max(g.spacing.x, std::max(g.spacing.y, g.spacing.z));
+  const uint32_t maxLevel = gpu::kMaxProbeCascades - 1u;
+  const float finest = cascades == 0 ? std::max(kProbeTargetSpacing, coarsest / float(1u << maxLevel))
+                                     : coarsest / float(1u << (std::min(cascades, gpu::kMaxProbeCascades) - 1u));
+  auto levelsFor = [&](const glm::vec3& spacing) {
+    glm::uvec3 levels{0u};
+    for (int a = 0; a < 3; ++a)
+      if (spacing[a] > finest)
+        levels[a] = std::min(maxLevel, uint32_t(std::ceil(std::log2(spacing[a] / finest) - 1e-3f)));
+    return levels;
+  };
+  glm::uvec3 levels = levelsFor(g.spacing);
+  uint32_t deepest = std::max(levels.x, std::max(levels.y, levels.z));
+  g.cascades = cascades == 0 ? 1u + deepest : std::clamp(cascades, 1u, gpu::kMaxProbeCascades);
+  if (g.cascades > 1) {
+    // A finer window of 2 probes on an axis would cover one cell of it: a large flat scene's height.
+    // Such axes get kMinCascadeCounts probes in every cascade (the finer ones may then need no
+    // subdivision on them at all).
+    for (int a = 0; a < 3; ++a)
+      if (g.counts[a] < kMinCascadeCounts) {
+        g.counts[a] = kMinCascadeCounts;
+        g.spacing[a] = std::max(inner[a] / float(kMinCascadeCounts - 1), 1e-3f);
+      }
+    levels = levelsFor(g.spacing);
+  }
+  for (uint32_t k = 0; k < g.cascades; ++k) {
+    // Cascade k's lattice has 2^shift cells per coarsest cell on each axis; its window of counts
+    // probes is centred on the eye, snapped to its lattice and kept inside the coarsest window.
+    uint32_t packed = 0;
+    for (int a = 0; a < 3; ++a) {
+      const uint32_t shift = uint32_t(std::max(0, int(levels[a]) - int(k)));  // k = 0: the finest
+      const uint32_t scale = 1u << shift;
+      const float spacing = g.spacing[a] / float(scale);
+      const int last = int((g.counts[a] - 1u) * (scale - 1u));  // the window's furthest start
+      const float centred = (eye[a] - g.origin[a]) / spacing - 0.5f * float(g.counts[a] - 1u);
+      const int cell = std::clamp(int(std::lround(centred)), 0, last);
+      packed |= uint32_t(cell) << (8 * a) | shift << (24 + 2 * a);
+    }
+    g.cascadeCells[k] = {packed, 0u};
+  }
   g.raysPerProbe = gpu::kProbeRaysPerProbe;
-  const uint32_t probes = g.counts.x * g.counts.y * g.counts.z;
+  const uint32_t probes = g.counts.x * g.counts.y * g.counts.z * g.cascades;
   g.tilesPerRow = uint32_t(std::ceil(std::sqrt(float(probes))));
   g.normalBias = 0.05f;
   g.viewBias = 0.2f;
@@ -82,8 +143,10 @@ gpu::ProbeGrid fitGrid(const scene::Aabb& sceneBounds) {
   return g;
 }
 
+namespace {
+
 rhi::ImageDesc atlasDesc(const gpu::ProbeGrid& g, uint32_t interior, VkFormat format) {
-  const uint32_t probes = g.counts.x * g.counts.y * g.counts.z;
+  const uint32_t probes = g.counts.x * g.counts.y * g.counts.z * g.cascades;
   const uint32_t rows = (probes + g.tilesPerRow - 1) / g.tilesPerRow;
   return {format, g.tilesPerRow * (interior + 2), rows * (interior + 2), 1, kUsage};
 }
@@ -92,8 +155,12 @@ rhi::ImageDesc atlasDesc(const gpu::ProbeGrid& g, uint32_t interior, VkFormat fo
 
 graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                         const ProbeFrame& frame, ProbeLookup& lookup) {
-  gpu::ProbeGrid grid = fitGrid(in.scene.bounds);
-  const uint32_t probes = grid.counts.x * grid.counts.y * grid.counts.z;
+  gpu::ProbeGrid grid = fitProbeGrid(in.scene.bounds.min, in.scene.bounds.max, frame.eye, frame.cascades);
+  const uint32_t probes = grid.counts.x * grid.counts.y * grid.counts.z * grid.cascades;
+  fprintf(stderr, "DBG bounds %g %g %g .. %g %g %g spacing %g %g %g counts %u %u %u cascades %u\n",
+          in.scene.bounds.min.x, in.scene.bounds.min.y, in.scene.bounds.min.z, in.scene.bounds.max.x,
+          in.scene.bounds.max.y, in.scene.bounds.max.z, grid.spacing.x, grid.spacing.y, grid.spacing.z, grid.counts.x,
+          grid.counts.y, grid.counts.z, grid.cascades);
   const auto irradiance =
       graph.history("gi-probe-irradiance", atlasDesc(grid, gpu::kProbeIrradianceTexels, VK_FORMAT_R16G16B16A16_SFLOAT),
                     kRadianceImage);
@@ -103,6 +170,19 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
       "gi-probe-bounce", atlasDesc(grid, gpu::kProbeIrradianceTexels, VK_FORMAT_R16G16B16A16_SFLOAT), kRadianceImage);
   const auto data = graph.history("gi-probe-data", {VK_FORMAT_R16G16B16A16_SFLOAT, probes, 1, 1, kUsage});
   const uint32_t frames = std::min({irradiance.frames, visibility.frames, bounce.frames});
+  // Where the windows were at the last update: the probes that entered a window since start without
+  // history (probeFresh() in lib/probes.glsl).
+  if (frame.state) {
+    ProbeCascadeState& state = *frame.state;
+    const bool known = frames > 0 && state.cascades == grid.cascades;
+    for (uint32_t k = 0; k < grid.cascades; ++k) {
+      const uint32_t now = grid.cascadeCells[k].x & 0xffffffu;
+      if (known && state.windows[k] != now)
+        grid.cascadeCells[k] = {grid.cascadeCells[k].x | gpu::kProbeWindowMoved, state.windows[k]};
+      state.windows[k] = now;
+    }
+    state.cascades = grid.cascades;
+  }
   grid.rotation = frameRotation(frame.index, frame.seed);
   grid.historyScale = frame.historyScale;
   const VkSampler linear = in.linear.handle();
@@ -196,6 +276,7 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
   }
   update(src, dst, frames + kWarmupUpdates, "");
   grid.flags |= gpu::kProbeHistoryValid | gpu::kProbeDataValid;  // the lookup reads this frame's atlases
+  for (glm::uvec2& w : grid.cascadeCells) w = {w.x & ~gpu::kProbeWindowMoved, 0u};  // and sees no probe fresh
   lookup = {irradiance.next, visibility.next, data.next, grid};
   lookup.grid.flags |= gpu::kProbeLookup;
   const graph::ImageHandle out =

@@ -1,6 +1,7 @@
 #pragma once
 // The passes of the hybrid frame (docs/architecture.md §3), one file each: functions from graph inputs to
 // graph outputs. A pass declares what it reads and writes; the graph places the barriers.
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -19,6 +20,7 @@ class Sampler;
 namespace rayster::render {
 
 struct GpuScene;
+struct RenderSettings;
 
 // Graph image tags (graph::RenderGraph::createImage): the image holds pre-exposed light
 // (lib/frame.glsl), which an AOV of it divides back to the scene's units.
@@ -98,12 +100,29 @@ RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, co
                             bool indirectQuarter, uint32_t lightsPerHit);
 // Denoised by denoiseShadows() (render/passes/denoise.h).
 
+// Where the probe cascades' windows were at the last update (render/passes/gi_probes.cpp): the
+// renderer keeps it across frames, so that a window that scrolls with the camera resets only the
+// probes that entered it.
+struct ProbeCascadeState {
+  uint32_t cascades = 0;                                   // 0: no update yet
+  std::array<uint32_t, gpu::kMaxProbeCascades> windows{};  // cascadeCells[k].x's cells (bits 0..23)
+};
 // What the probe passes need to know of the frame (render/passes/gi_probes.cpp).
 struct ProbeFrame {
-  uint32_t index = 0, seed = 0;  // the frame's number and the run's seed: the rays' random rotation
-  float historyScale = 1.0f;     // the exposure ratio the previous atlases are read × by
-  bool moving = false;           // the camera or an object moves: lower hysteresis, to follow it
+  uint32_t index = 0, seed = 0;        // the frame's number and the run's seed: the rays' random rotation
+  float historyScale = 1.0f;           // the exposure ratio the previous atlases are read × by
+  bool moving = false;                 // the camera or an object moves: lower hysteresis, to follow it
+  glm::vec3 eye{0.0f};                 // the camera's position: the finer cascades are centred on it
+  uint32_t cascades = 0;               // --probe-cascades: 1..4, 0 auto (probeCascadesSetting())
+  ProbeCascadeState* state = nullptr;  // the renderer's, updated by traceProbeIrradiance()
 };
+// --probe-cascades of the settings: 0 for auto, else the number asked for.
+uint32_t probeCascadesSetting(const RenderSettings& settings);
+// The probe grid fitted to the scene's bounds with `cascades` cascades (0: as many as bring the
+// finest spacing to 2.5 m, at most kMaxProbeCascades), the finer windows centred on `eye` and kept
+// inside the coarsest one; cascadeCells hold the windows (none moved).
+// An invalid box (min > max) stands for the unit cube.
+gpu::ProbeGrid fitProbeGrid(glm::vec3 boundsMin, glm::vec3 boundsMax, glm::vec3 eye, uint32_t cascades);
 // Reflections and refractions of mirror, metal and glass pixels (RGBA16F radiance, 0 elsewhere).
 // `bounces` (FrameConstants::maxSpecularBounces) and `lightsPerHit` only count its rays (PassInfo::rays).
 // Irradiance probes (render/passes/gi_probes.cpp, --gi probes): this frame's atlases and grid, for

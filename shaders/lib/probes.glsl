@@ -1,6 +1,6 @@
 // Irradiance probes (shared/probes.h, docs/techniques.md §16b): indexing, ray directions, atlas
 // addressing and the lookup of irradiance at a surface point from its eight surrounding probes with
-// trilinear, back-face and Chebyshev visibility weights. The includer declares (unless it defines
+// trilinear, back-face and Chebyshev visibility weights, in the finest cascade around it. The includer declares (unless it defines
 // PROBES_NO_LOOKUP)
 //   uniform sampler2D probeIrradianceTex;  // linear filtering, clamp
 //   uniform sampler2D probeVisibilityTex;
@@ -8,13 +8,49 @@
 #ifndef RAYSTER_PROBES_GLSL
 #define RAYSTER_PROBES_GLSL
 
-uint probeCount(ProbeGrid g) { return g.counts.x * g.counts.y * g.counts.z; }
-
-ivec3 probeCoord(ProbeGrid g, uint i) {
-  return ivec3(i % g.counts.x, (i / g.counts.x) % g.counts.y, i / (g.counts.x * g.counts.y));
+// Probe i of the atlases is slot i % probesPerCascade() of cascade i / probesPerCascade(); a slot
+// holds the lattice point whose coordinate is the slot's modulo counts (shared/probes.h).
+uint probesPerCascade(ProbeGrid g) { return g.counts.x * g.counts.y * g.counts.z; }
+uint probeCount(ProbeGrid g) { return probesPerCascade(g) * g.cascades; }
+uint probeCascade(ProbeGrid g, uint i) { return i / probesPerCascade(g); }
+// Cascade k's cells per coarsest cell on each axis (a power of two: 1 on an axis the coarsest
+// spacing already resolves).
+ivec3 probeScale(ProbeGrid g, uint k) {
+  uint w = g.cascadeCells[k].x >> 24;
+  return ivec3(1) << ivec3(w & 3u, (w >> 2) & 3u, (w >> 4) & 3u);
 }
-uint probeIndex(ProbeGrid g, ivec3 c) { return uint(c.x) + g.counts.x * (uint(c.y) + g.counts.y * uint(c.z)); }
-vec3 probePosition(ProbeGrid g, ivec3 c) { return g.origin + vec3(c) * g.spacing; }
+vec3 probeSpacing(ProbeGrid g, uint k) { return g.spacing / vec3(probeScale(g, k)); }
+float probeMinSpacing(ProbeGrid g, uint k) {
+  vec3 s = probeSpacing(g, k);
+  return min(s.x, min(s.y, s.z));
+}
+ivec3 probeUnpackCell(uint w) { return ivec3(w & 0xffu, (w >> 8) & 0xffu, (w >> 16) & 0xffu); }
+ivec3 probeWindow(ProbeGrid g, uint k) { return probeUnpackCell(g.cascadeCells[k].x); }
+
+// The lattice coordinate (in its cascade's spacings from origin) of probe i.
+ivec3 probeLattice(ProbeGrid g, uint i) {
+  uint j = i % probesPerCascade(g);
+  ivec3 n = ivec3(g.counts);
+  ivec3 slot = ivec3(j % g.counts.x, (j / g.counts.x) % g.counts.y, j / (g.counts.x * g.counts.y));
+  ivec3 cell = probeWindow(g, probeCascade(g, i));
+  return cell + (slot - cell % n + n) % n;
+}
+vec3 probeWorldPosition(ProbeGrid g, uint i) {
+  return g.origin + vec3(probeLattice(g, i)) * probeSpacing(g, probeCascade(g, i));
+}
+// The probe at window coordinate c (0 .. counts − 1) of cascade k.
+uint probeIndexAt(ProbeGrid g, uint k, ivec3 c) {
+  ivec3 s = (probeWindow(g, k) + c) % ivec3(g.counts);
+  return k * probesPerCascade(g) + uint(s.x) + g.counts.x * (uint(s.y) + g.counts.y * uint(s.z));
+}
+// The probe's lattice point entered its cascade's window at this update (the window scrolled with
+// the camera): the atlases and data of the update before hold another point's light there.
+bool probeFresh(ProbeGrid g, uint i) {
+  uvec2 w = g.cascadeCells[probeCascade(g, i)];
+  if ((w.x & kProbeWindowMoved) == 0u) return false;
+  ivec3 d = probeLattice(g, i) - probeUnpackCell(w.y);
+  return any(lessThan(d, ivec3(0))) || any(greaterThanEqual(d, ivec3(g.counts)));
+}
 
 vec3 rotateByQuaternion(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 
@@ -60,28 +96,32 @@ vec4 probeData(ProbeGrid g, uint probe) {
   return (g.flags & kProbeDataValid) != 0u ? texelFetch(probeDataTex, ivec2(probe, 0), 0) : vec4(0.0, 0.0, 0.0, 1.0);
 }
 
-// Irradiance at p (shading normal n, direction to the viewer v) from the eight probes of its grid
-// cell, in the directions n (e) and r (er: probeIrradiance2 only, the mirror direction for the
-// untraced specular light; one set of weights for both). Each probe counts with its trilinear
+// Where p lies in cascade k's window, in its cells (0 .. counts − 1 inside).
+vec3 probeCascadePosition(ProbeGrid g, uint k, vec3 p) {
+  return (p - g.origin) / probeSpacing(g, k) - vec3(probeWindow(g, k));
+}
+
+// Cascade k's share of probeIrradiance2(): the eight probes of p's cell, each with its trilinear
 // weight, a smooth back-face weight (probes behind the surface count little) and the Chebyshev
-// bound of being visible from the probe's distance moments.
-void probeIrradiance2(ProbeGrid g, vec3 p, vec3 n, vec3 v, bool withR, vec3 r, out vec3 e, out vec3 er) {
+// bound of being visible from the probe's distance moments. Returns the sum of the weights (0:
+// every probe there inactive or fresh).
+float probeCascadeIrradiance(ProbeGrid g, uint k, vec3 p, vec3 n, vec3 v, bool withR, vec3 r, out vec3 e,
+                             out vec3 er) {
   vec2 irradianceSize = vec2(textureSize(probeIrradianceTex, 0));
   vec2 visibilitySize = vec2(textureSize(probeVisibilityTex, 0));
-  float minSpacing = min(g.spacing.x, min(g.spacing.y, g.spacing.z));
-  vec3 biased = p + (n * g.normalBias + v * g.viewBias) * minSpacing;
-  vec3 cellPos = clamp((biased - g.origin) / g.spacing, vec3(0.0), vec3(g.counts - 1u));
+  vec3 biased = p + (n * g.normalBias + v * g.viewBias) * probeMinSpacing(g, k);
+  vec3 cellPos = clamp(probeCascadePosition(g, k, biased), vec3(0.0), vec3(g.counts - 1u));
   ivec3 base = min(ivec3(floor(cellPos)), ivec3(g.counts) - 2);
   vec3 alpha = clamp(cellPos - vec3(base), 0.0, 1.0);
   vec3 sum = vec3(0.0), sumR = vec3(0.0);
   float weightSum = 0.0;
   for (int i = 0; i < 8; ++i) {
     ivec3 offset = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-    ivec3 c = base + offset;
-    uint probe = probeIndex(g, c);
+    uint probe = probeIndexAt(g, k, base + offset);
     vec4 data = probeData(g, probe);
-    if (data.w < 0.5) continue;  // inactive: inside geometry, or no surface near it
-    vec3 probePos = probePosition(g, c) + data.xyz;
+    if (data.w < 0.5) continue;             // inactive: inside geometry, or no surface near it
+    if (probeFresh(g, probe)) continue;     // its light is of another place until it is updated
+    vec3 probePos = probeWorldPosition(g, probe) + data.xyz;
     vec3 trilinear = mix(1.0 - alpha, alpha, vec3(offset));
     float weight = trilinear.x * trilinear.y * trilinear.z;
     vec3 toProbe = normalize(probePos - p);
@@ -106,6 +146,41 @@ void probeIrradiance2(ProbeGrid g, vec3 p, vec3 n, vec3 v, bool withR, vec3 r, o
   }
   e = weightSum > 0.0 ? sum / weightSum : vec3(0.0);
   er = weightSum > 0.0 ? sumR / weightSum : vec3(0.0);
+  return weightSum;
+}
+
+// Irradiance at p (shading normal n, direction to the viewer v) in the directions n (e) and r (er:
+// probeIrradiance2 only, the mirror direction for the untraced specular light; one set of weights
+// for both), from the finest cascade whose window holds p; within its last cell of the window's
+// edge it fades into the next coarser one, and a cascade whose eight probes are all inactive
+// leaves p to the next. The coarsest cascade holds the whole scene.
+void probeIrradiance2(ProbeGrid g, vec3 p, vec3 n, vec3 v, bool withR, vec3 r, out vec3 e, out vec3 er) {
+  e = vec3(0.0);
+  er = vec3(0.0);
+  float remaining = 1.0;
+  for (uint k = 0u; k < g.cascades && remaining > 0.0; ++k) {
+    float w = 1.0;
+    if (k + 1u < g.cascades) {
+      // The distance to the window's edges, in its cells; an edge on the coarsest grid's face does
+      // not count (past it every cascade clamps alike: the margin between the bounds and the probes).
+      vec3 c = probeCascadePosition(g, k, p);
+      ivec3 cell = probeWindow(g, k), last = (ivec3(g.counts) - 1) * (probeScale(g, k) - 1);
+      vec3 below = mix(c, vec3(1e9), equal(cell, ivec3(0)));
+      vec3 above = mix(vec3(g.counts - 1u) - c, vec3(1e9), equal(cell, last));
+      vec3 toEdge = min(below, above);
+      w = clamp(min(toEdge.x, min(toEdge.y, toEdge.z)), 0.0, 1.0);
+      if (w <= 0.0) continue;  // outside this cascade's window
+    }
+    vec3 ek, erk;
+    if (probeCascadeIrradiance(g, k, p, n, v, withR, r, ek, erk) <= 0.0) continue;
+    e += remaining * w * ek;
+    er += remaining * w * erk;
+    remaining *= 1.0 - w;
+  }
+  if (remaining > 0.0 && remaining < 1.0) {  // the coarsest had no probe to give: the finer ones' share is all
+    e /= 1.0 - remaining;
+    er /= 1.0 - remaining;
+  }
 }
 
 vec3 probeIrradiance(ProbeGrid g, vec3 p, vec3 n, vec3 v) {

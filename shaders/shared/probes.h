@@ -23,25 +23,38 @@ RAYSTER_CONST uint kProbeDataValid = 4u;     // probeDataTex holds each probe's 
 RAYSTER_CONST float kProbeBackfaceFraction = 0.25;  // more back-face hits than this: the probe is inside geometry
 RAYSTER_CONST float kProbeMinFrontDistance = 0.2;   // nearer a surface than this: pushed away from it
 RAYSTER_CONST float kProbeMaxOffset = 0.45;         // of the spacing per axis: a probe stays in its cell
+// Cascades (docs/techniques.md §16b): cascade cascades−1 is the grid fitted to the scene; each finer
+// one halves the spacing of the next on the axes still coarser than the target, keeps the counts,
+// and follows the camera.
+RAYSTER_CONST uint kMaxProbeCascades = 4u;
+RAYSTER_CONST uint kProbeWindowMoved = 1u << 30;  // ProbeGrid::cascadeCells[k].x
 
 struct ProbeGrid {
-  vec3 origin;  // world position of probe (0, 0, 0)
+  vec3 origin;  // world position of the coarsest cascade's probe (0, 0, 0): the lattices' origin
   uint raysPerProbe;
-  vec3 spacing;            // between neighbouring probes, per axis
-  uint tilesPerRow;        // atlas columns (both atlases): probe i's tile is (i % tilesPerRow, i / tilesPerRow)
-  uvec3 counts;            // probes per axis (≥ 2 each); probe index = x + counts.x·(y + counts.y·z)
-  uint flags;              // kProbe*
-  vec4 rotation;           // this frame's random rotation of the ray directions (unit quaternion)
-  float hysteresis;        // weight of the previous atlas in the blend (0: this frame only): direct light
+  vec3 spacing;      // between neighbouring probes, per axis, in the coarsest cascade (probeSpacing(): cascade k's)
+  uint tilesPerRow;  // atlas columns (both atlases): probe i's tile is (i % tilesPerRow, i / tilesPerRow)
+  uvec3 counts;      // probes per axis and cascade (≥ 2 each)
+  uint flags;        // kProbe*
+  vec4 rotation;     // this frame's random rotation of the ray directions (unit quaternion)
+  float hysteresis;  // weight of the previous atlas in the blend (0: this frame only): direct light
   float bounceHysteresis;  // the same for the light that bounced through the probes (lower: see §16b)
   float normalBias;        // lookup point offset along the normal, × the smallest spacing
   float viewBias;          // and towards the viewer
   float maxDistance;       // what a ray that misses records as its distance
   float historyScale;  // the exposure ratio (FrameConstants::exposureRatio) the previous irradiance atlas is read × by
+  uint cascades;       // 1..kMaxProbeCascades; probe index = cascade × probes per cascade + slot
+  // Per cascade k, where its window of counts probes lies on its lattice (in its own spacings from
+  // origin) and where it lay at the update before: .x = cell x | y << 8 | z << 16 | the lattice's
+  // log2 cells per coarsest cell on each axis (2 bits each, x first) << 24 | kProbeWindowMoved when
+  // the window moved since the update before, whose window .y then holds (cell x | y << 8 | z << 16).
+  // A probe's slot in its cascade is its lattice coordinate modulo counts (toroidal): when the
+  // window scrolls, only the probes that entered it start without history (probeFresh()).
+  uvec2 cascadeCells[kMaxProbeCascades];
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(ProbeGrid) == 88);
+static_assert(sizeof(ProbeGrid) == 124);  // ≤ 128: push constants every device has
 }  // namespace rayster::gpu
 #endif
 
