@@ -26,8 +26,9 @@ namespace {
 constexpr const char* kExitCodes =
     "Exit codes:\n"
     "  0 ok, 1 other failure (or validation errors with --validation), 2 bad arguments,\n"
-    "  3 missing or invalid input file, 4 no Vulkan device, 5 missing capability (ray tracing with --require-rt),\n"
-    "  6 device lost, 7 out of memory, 8 output could not be written, 9 comparison over budget";
+    "  3 missing or invalid input file, 4 no Vulkan device (or none matching --device), 5 missing capability\n"
+    "  (ray tracing with --require-rt), 6 device lost, 7 out of memory, 8 output could not be written, 9 comparison "
+    "over budget";
 
 bool parseSize(const std::string& text, uint32_t& w, uint32_t& h) {
   unsigned a = 0, b = 0;

@@ -101,7 +101,7 @@ void SequenceProgress::accumulating(int64_t frame, uint32_t done, uint32_t total
 
 void SequenceProgress::written(int64_t frame, const std::string& path) {
   ++done_;
-  if (style_ == ProgressStyle::Bar) return drawBar(frame + 1, 0.0);
+  if (style_ == ProgressStyle::Bar) return drawBar(frame, 0.0);
   if (style_ != ProgressStyle::Lines) return;
   if (done_ != total_ && done_ != 1 && Clock::now() - lastLine_ < kSequenceLineInterval) return;
   lastLine_ = Clock::now();

@@ -123,6 +123,20 @@ TEST(Sequence, ProbesRestartWithEveryFrameSoAChunkStillMatches) {
   expectSameFrame(whole, chunk, 2);
 }
 
+TEST(Sequence, ARunDoesNotInheritTheExposureOrCullingOfTheRunsBeforeIt) {
+  // Without Renderer::restartHistories the whitted scene's frame 3 after frames 0-2 differs from
+  // frame 3 alone (the auto exposure starts from the last run's reading instead of its estimate).
+  const fs::path dir = testDir(), whole = dir / "whole", chunk = dir / "chunk";
+  const std::string args = "render builtin:whitted --size 32x24 --frames 2 --primary raster --indirect off";
+  RunResult all = runRayster(args + " --frames-out 0:3 -o " + (whole / "f_####.png").string() + " --hdr " +
+                             (whole / "f_####.exr").string());
+  ASSERT_EQ(all.exitCode, 0) << all.output;
+  RunResult part = runRayster(args + " --frames-out 3:3 -o " + (chunk / "f_####.png").string() + " --hdr " +
+                              (chunk / "f_####.exr").string());
+  ASSERT_EQ(part.exitCode, 0) << part.output;
+  expectSameFrame(whole, chunk, 3);
+}
+
 TEST(Sequence, BadRangesAndNamesAreRefusedWithOneLine) {
   const fs::path dir = testDir();
   struct Case {
