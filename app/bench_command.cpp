@@ -20,6 +20,7 @@
 
 #include "app/bench_report.h"
 #include "app/build_info.h"
+#include "app/device_option.h"
 #include "core/log.h"
 #include "render/renderer.h"
 #include "rhi/context.h"
@@ -139,7 +140,7 @@ json configResult(const rhi::Context& ctx, const BenchConfig& c, const render::R
 Result<json> runConfig(const BenchOptions& o, const BenchConfig& c) {
   auto scene = scene::loadScene(c.scene);
   if (!scene) return scene.error();
-  auto ctx = rhi::Context::create({o.validation, true, o.device, o.debugLabels});
+  auto ctx = rhi::Context::create({o.validation, true, deviceSelector(o.device), o.debugLabels});
   if (!ctx) return ctx.error();
   json result;
   {

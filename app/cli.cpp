@@ -13,6 +13,7 @@
 #include "app/build_info.h"
 #include "app/commands.h"
 #include "app/compare_command.h"
+#include "app/info_command.h"
 #include "app/render_command.h"
 #include "app/settings_cli.h"
 #include "app/viewer/viewer.h"
@@ -25,8 +26,9 @@ namespace {
 constexpr const char* kExitCodes =
     "Exit codes:\n"
     "  0 ok, 1 other failure (or validation errors with --validation), 2 bad arguments,\n"
-    "  3 missing or invalid input file, 4 no Vulkan device, 5 missing capability (ray tracing with --require-rt),\n"
-    "  6 device lost, 7 out of memory, 8 output could not be written, 9 comparison over budget";
+    "  3 missing or invalid input file, 4 no Vulkan device (or none matching --device), 5 missing capability\n"
+    "  (ray tracing with --require-rt), 6 device lost, 7 out of memory, 8 output could not be written, 9 comparison "
+    "over budget";
 
 bool parseSize(const std::string& text, uint32_t& w, uint32_t& h) {
   unsigned a = 0, b = 0;
@@ -55,7 +57,9 @@ void addGlobalOptions(CLI::App& cli, GlobalOptions& g) {
   cli.add_flag("-v,--verbose", g.verbose, "Print debug details (device, scene statistics)");
   cli.add_flag("--validation", g.validation,
                "Enable Vulkan validation (also RAYSTER_VALIDATION=1); any error fails the run");
-  cli.add_option("--device", g.device, "Use the device whose name contains this text");
+  cli.add_option("--device", g.device,
+                 "Use this device: its index or UUID as `rayster info` lists them, or text its name contains "
+                 "(the best such device); exit 4 listing the devices when none matches");
   cli.add_flag("--no-debug-labels", g.noLabels, "Do not emit debug labels and object names (on by default)");
   cli.set_version_flag("--version", fmt::format("rayster {} (commit {})", buildVersion(), buildCommit()),
                        "Print the version and the commit this binary was built from");
@@ -112,6 +116,22 @@ void addRenderFrameOptions(CLI::App* render, RenderArgs& a) {
       ->check(CLI::Range(1.0f, 10000.0f));
 }
 
+// Image sequences (docs/sequences.md) and progress.
+void addRenderSequenceOptions(CLI::App* render, RenderArgs& a) {
+  RenderOptions& ro = a.options;
+  render->add_option("--frames-out", ro.framesOut,
+                     "Write frames FIRST to LAST (every STEP-th) of the animation and camera path, one image each: "
+                     "FIRST:LAST[:STEP]; frame F is at --time + F / --path-fps; -o (and --hdr) name each with # "
+                     "runs replaced by the zero-padded frame number, e.g. out/shot_####.png. Each frame renders "
+                     "--frames frames from fresh histories, ending on it, so a chunk's pixels equal the whole range's");
+  render->add_flag("--skip-existing", ro.skipExisting,
+                   "With --frames-out: do not render frames whose image (-o, and --hdr if given) exists already, "
+                   "to resume an interrupted range");
+  render->add_option("--progress", ro.progress,
+                     "auto (default: a bar on a terminal, lines elsewhere), bar (frame, rate, ETA redrawn in place), "
+                     "lines (one per output frame, at most every 2 s, and every 10 s within a frame) or off");
+}
+
 // Timings, memory, intermediate images, raw-rate twins, scripted edits, JSON.
 void addRenderReportOptions(CLI::App* render, RenderArgs& a) {
   RenderOptions& ro = a.options;
@@ -132,7 +152,9 @@ void addRenderReportOptions(CLI::App* render, RenderArgs& a) {
   render->add_option("--move-instance", a.moveInstance,
                      "At frame FRAME (0-based) move the named instance to X,Y,Z: NAME:X,Y,Z@FRAME, repeatable "
                      "(motion vectors and the TLAS follow)");
-  render->add_option("--json", ro.jsonOutput, "Write per-pass GPU times and settings as JSON to this file");
+  render->add_option("--json", ro.jsonOutput,
+                     "Write per-pass GPU times and settings as JSON to this file; with --frames-out also a "
+                     "\"sequence\" summary (frames written and skipped, wall time, frames/s, encoding time)");
 }
 
 void addRenderCommand(CLI::App& cli, RenderArgs& a) {
@@ -140,6 +162,7 @@ void addRenderCommand(CLI::App& cli, RenderArgs& a) {
   addRenderImageOptions(a.app, a);
   addRenderFrameOptions(a.app, a);
   addSettingOptions(a.app, render::kUseRender, a.settings);  // mode, effects, tonemap, ...: the settings table
+  addRenderSequenceOptions(a.app, a);
   addRenderReportOptions(a.app, a);
 }
 
@@ -258,7 +281,10 @@ int run(int argc, char** argv) {
   addRenderCommand(cli, render);
   BenchOptions bo;
   CLI::App* bench = addBenchCommand(cli, bo);
-  CLI::App* info = cli.add_subcommand("info", "List Vulkan devices and their ray-tracing capabilities");
+  CLI::App* info = cli.add_subcommand(
+      "info", "List Vulkan devices (index and UUID, what --device takes) and their ray-tracing capabilities");
+  bool infoJson = false;
+  info->add_flag("--json", infoJson, "Print a JSON array, one object per device");
   CompareOptions co;
   CLI::App* compare = addCompareCommand(cli, co);
   ViewCommand view;
@@ -271,7 +297,7 @@ int run(int argc, char** argv) {
   // Headless runs need no display, but Mesa and the loader expect a runtime directory.
   setenv("XDG_RUNTIME_DIR", "/tmp", /*overwrite=*/0);
 
-  if (info->parsed()) return infoCommand();
+  if (info->parsed()) return infoCommand(infoJson);
   if (bench->parsed()) {
     bo.validation = global.validation;
     bo.device = global.device;

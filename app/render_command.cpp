@@ -1,4 +1,4 @@
-// `rayster render` and `rayster info`.
+// `rayster render` (a sequence of frames: app/sequence.h).
 #include "app/render_command.h"
 
 #include <unistd.h>
@@ -8,12 +8,14 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "app/build_info.h"
+#include "app/device_option.h"
+#include "app/image_writer.h"
 #include "app/progress.h"
+#include "app/sequence.h"
 #include "app/settings_cli.h"
 #include "core/image_io.h"
 #include "core/log.h"
@@ -116,6 +118,29 @@ nlohmann::json timingsJson(const rhi::Context& ctx, const RenderOptions& o, cons
   return j;
 }
 
+void printTimings(const rhi::Context& ctx, const RenderOptions& o, const render::RenderSettings& settings,
+                  const render::RenderOutput& out) {
+  std::printf("%-20s %10s %10s %10s\n", "pass", "median ms", "min ms", "p95 ms");
+  for (const auto& p : out.passes)
+    std::printf("%-20s %10.3f %10.3f %10.3f\n", p.name.c_str(), p.medianMs, p.minMs, p.p95Ms);
+  if (out.visibleDraws >= 0)
+    std::printf("%-20s %10lld of %u (last frame, culling %s)\n", "visible draws", (long long)out.visibleDraws,
+                out.totalDraws, o.settings.culling ? "on" : "off");
+  std::printf("%-20s %10.3f   (%s, %s, primary %s, %ux%u)\n", "frame (GPU)", out.frameMedianMs, ctx.info().name.c_str(),
+              render::modeName(out.modeUsed), render::primaryName(out.primaryUsed), settings.width, settings.height);
+  const auto& st = out.scene;
+  std::printf("%-20s %10.1f MiB (transients %.1f, %.1f unaliased; histories/outputs %.1f) of %.1f MiB in use\n",
+              "frame resources", double(st.frameBytes) / (1 << 20), double(st.transientBytes) / (1 << 20),
+              double(st.transientUnaliasedBytes) / (1 << 20), double(st.historyBytes) / (1 << 20),
+              double(st.deviceBytesUsed) / (1 << 20));
+}
+
+int validationCode(const rhi::Context& ctx) {
+  if (!ctx.validationEnabled() || ctx.validationErrors() == 0) return 0;
+  std::fprintf(stderr, "rayster: error: %u Vulkan validation error(s)\n", ctx.validationErrors());
+  return int(ExitCode::Failure);
+}
+
 }  // namespace
 
 // The PNG of an AOV is for looking at: normals map to colours, stored sRGB albedo is decoded so the
@@ -171,6 +196,84 @@ Status parseMoves(const std::vector<std::string>& args, std::vector<render::Rend
   return okStatus();
 }
 
+namespace {
+
+// What --frames-out needs of the other options, checked before any GPU work.
+Result<std::optional<FrameRange>> checkSequence(const RenderOptions& o) {
+  if (o.framesOut.empty()) {
+    if (o.skipExisting) return makeError(ExitCode::BadArguments, "--skip-existing needs --frames-out");
+    return std::optional<FrameRange>{};
+  }
+  auto range = parseFrameRange(o.framesOut);
+  if (!range) return range.error();
+  if (range->count() > 1) {
+    if (!hasFrameNumber(o.output))
+      return makeError(ExitCode::BadArguments,
+                       "--frames-out {} writes {} frames: -o '{}' needs # for the frame number (e.g. shot_####.png)",
+                       o.framesOut, range->count(), o.output);
+    if (!o.hdrOutput.empty() && !hasFrameNumber(o.hdrOutput))
+      return makeError(ExitCode::BadArguments, "--frames-out {}: --hdr '{}' needs # for the frame number", o.framesOut,
+                       o.hdrOutput);
+  }
+  // Scripted edits outlast a run (Renderer::setInstanceTransform): a chunk that starts after the
+  // edit's frame would never make it, so its frames would differ from the whole range's.
+  if (!o.settings.moves.empty())
+    return makeError(ExitCode::BadArguments, "--move-instance cannot be combined with --frames-out");
+  return std::optional<FrameRange>{*range};
+}
+
+// --json of a sequence: the last rendered frame's timings and settings, and the range's summary.
+Status writeSequenceJson(const rhi::Context& ctx, const RenderOptions& o, const render::RenderSettings& s,
+                         const FrameRange& range, const SequenceResult& r) {
+  nlohmann::json j = timingsJson(ctx, o, s, r.last);
+  j["primary"] = render::primaryName(r.primary);
+  nlohmann::json seq = r.json();
+  seq["first"] = range.first;
+  seq["last"] = range.last;
+  seq["step"] = range.step;
+  seq["frames_in_range"] = range.count();
+  seq["output"] = o.output;
+  seq["accumulated_frames"] = s.frames;
+  j["sequence"] = seq;
+  return writeFileAtomically(o.jsonOutput, j.dump(2) + "\n");
+}
+
+Status renderRange(const rhi::Context& ctx, render::Renderer& renderer, const RenderOptions& o,
+                   const render::RenderSettings& settings, const FrameRange& range, ProgressStyle progress) {
+  auto seq = renderSequence(renderer, o, settings, range, progress);
+  if (!seq) return seq.error();
+  if (o.printTimings) printTimings(ctx, o, settings, seq->last);
+  if (o.memoryReport) std::fputs(seq->last.scene.frameMemoryReport.c_str(), stdout);
+  if (!o.jsonOutput.empty())
+    if (Status s = writeSequenceJson(ctx, o, settings, range, *seq); !s) return s;
+  log::info(
+      "wrote {} of {} frames of {} ({} skipped; {}x{}, {} frames each; {:.1f} s, {:.2f} frames/s; encoding "
+      "{:.2f} s on {} worker threads, the render thread waited {:.2f} s for them)",
+      seq->written, range.count(), o.output, seq->skipped, settings.width, settings.height, settings.frames,
+      seq->wallSeconds, seq->wallSeconds > 0 ? double(seq->written) / seq->wallSeconds : 0.0, seq->encodeSeconds,
+      kWriterThreads, seq->waitSeconds);
+  return okStatus();
+}
+
+Status renderStill(const rhi::Context& ctx, render::Renderer& renderer, const RenderOptions& o,
+                   render::RenderSettings settings, ProgressStyle progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (settings.frames > 1) settings.progress = frameProgress(progress);
+  auto out = renderer.render(settings);
+  if (!out) return out.error();
+  const double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (Status s = writeFrameImages(o, o.output, o.hdrOutput, *out); !s) return s;
+  if (o.printTimings) printTimings(ctx, o, settings, *out);
+  if (o.memoryReport) std::fputs(out->scene.frameMemoryReport.c_str(), stdout);
+  if (!o.jsonOutput.empty())
+    if (Status s = writeFileAtomically(o.jsonOutput, timingsJson(ctx, o, settings, *out).dump(2) + "\n"); !s) return s;
+  log::info("wrote {} ({}x{}, {} frames, primary {}, {:.0f} ms)", o.output, settings.width, settings.height,
+            settings.frames, render::primaryName(out->primaryUsed), wallMs);
+  return okStatus();
+}
+
+}  // namespace
+
 int renderCommand(const RenderOptions& o) {
   // Check everything about the outputs before any GPU work, so bad arguments fail fast.
   if (auto s = checkOutputPath(o.output, "output", {".png", ".exr"}); !s) return fail(s.error());
@@ -178,6 +281,10 @@ int renderCommand(const RenderOptions& o) {
     if (auto s = checkOutputPath(o.hdrOutput, "--hdr", {".exr"}); !s) return fail(s.error());
   if (!o.jsonOutput.empty())
     if (auto s = checkOutputPath(o.jsonOutput, "--json", {".json"}); !s) return fail(s.error());
+  auto sequence = checkSequence(o);
+  if (!sequence) return fail(sequence.error());
+  auto progress = parseProgress(o.progress, isatty(STDERR_FILENO));
+  if (!progress) return fail(progress.error());
 
   auto aovs = parseAovs(o.aovs);
   if (!aovs) return fail(aovs.error());
@@ -189,7 +296,7 @@ int renderCommand(const RenderOptions& o) {
   log::info("loaded {} ({} triangles, {} instances) in {:.0f} ms", o.scene, scene->triangleCount(),
             scene->instances.size(),
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count());
-  auto ctx = rhi::Context::create({o.validation, o.requireRt, o.device, o.debugLabels});
+  auto ctx = rhi::Context::create({o.validation, o.requireRt, deviceSelector(o.device), o.debugLabels});
   if (!ctx) return fail(ctx.error());
   render::RenderSettings settings = o.settings;
   // Without ray-tracing pipelines every mode falls back to rasterisation, said in one line.
@@ -200,7 +307,6 @@ int renderCommand(const RenderOptions& o) {
   applyCpuDefaults((*ctx)->info(), o, settings);
   log::debug("device: {} ({}), driver {}", (*ctx)->info().name, (*ctx)->info().typeName(), (*ctx)->info().driverInfo);
 
-  int code = 0;
   {
     const auto uploadStart = std::chrono::steady_clock::now();
     auto renderer = render::Renderer::create(**ctx, *scene);
@@ -208,84 +314,12 @@ int renderCommand(const RenderOptions& o) {
     // Load time = the "loaded" line above + this (BENCHMARKS.md, "Loading big scenes").
     log::debug("scene on the device in {:.0f} ms",
                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - uploadStart).count());
-    auto t0 = std::chrono::steady_clock::now();
     settings.aovs = *aovs;
-    if (settings.frames > 1) settings.progress = frameProgress(isatty(STDERR_FILENO));
-    auto out = (*renderer)->render(settings);
-    if (!out) return fail(out.error());
-    double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-
-    const ExrPixels exr = o.exrFloat ? ExrPixels::Float : ExrPixels::Half;
-    Status written = lower(std::filesystem::path(o.output).extension().string()) == ".exr"
-                         ? writeExr(o.output, out->hdr, exr)
-                         : writePng(o.output, out->ldr);
-    if (!written) return fail(written.error());
-    if (!o.hdrOutput.empty())
-      if (auto s = writeExr(o.hdrOutput, out->hdr, exr); !s) return fail(s.error());
-    const std::filesystem::path outPath(o.output);
-    for (const auto& [name, img] : out->aovs) {
-      auto base = outPath.parent_path() / (outPath.stem().string() + "." + name);
-      if (auto s = writeImage(base.string() + ".png", aovForDisplay(name, img)); !s) return fail(s.error());
-      if (auto s = writeExr(base.string() + ".exr", img, exr); !s) return fail(s.error());
-    }
-    if (o.printTimings) {
-      std::printf("%-20s %10s %10s %10s\n", "pass", "median ms", "min ms", "p95 ms");
-      for (const auto& p : out->passes)
-        std::printf("%-20s %10.3f %10.3f %10.3f\n", p.name.c_str(), p.medianMs, p.minMs, p.p95Ms);
-      if (out->visibleDraws >= 0)
-        std::printf("%-20s %10lld of %u (last frame, culling %s)\n", "visible draws", (long long)out->visibleDraws,
-                    out->totalDraws, o.settings.culling ? "on" : "off");
-      std::printf("%-20s %10.3f   (%s, %s, primary %s, %ux%u)\n", "frame (GPU)", out->frameMedianMs,
-                  (*ctx)->info().name.c_str(), render::modeName(out->modeUsed), render::primaryName(out->primaryUsed),
-                  settings.width, settings.height);
-      const auto& st = out->scene;
-      std::printf("%-20s %10.1f MiB (transients %.1f, %.1f unaliased; histories/outputs %.1f) of %.1f MiB in use\n",
-                  "frame resources", double(st.frameBytes) / (1 << 20), double(st.transientBytes) / (1 << 20),
-                  double(st.transientUnaliasedBytes) / (1 << 20), double(st.historyBytes) / (1 << 20),
-                  double(st.deviceBytesUsed) / (1 << 20));
-    }
-    if (o.memoryReport) std::fputs(out->scene.frameMemoryReport.c_str(), stdout);
-    if (!o.jsonOutput.empty()) {
-      std::string tmp = o.jsonOutput + ".tmp";
-      {
-        std::ofstream f(tmp);
-        f << timingsJson(**ctx, o, settings, *out).dump(2) << "\n";
-        if (!f) return fail(makeError(ExitCode::OutputFailed, "cannot write {}", o.jsonOutput));
-      }
-      std::filesystem::rename(tmp, o.jsonOutput);
-    }
-    log::info("wrote {} ({}x{}, {} frames, primary {}, {:.0f} ms)", o.output, settings.width, settings.height,
-              settings.frames, render::primaryName(out->primaryUsed), wallMs);
+    Status done = *sequence ? renderRange(**ctx, **renderer, o, settings, **sequence, *progress)
+                            : renderStill(**ctx, **renderer, o, settings, *progress);
+    if (!done) return fail(done.error());
   }
-  if ((*ctx)->validationEnabled() && (*ctx)->validationErrors() > 0) {
-    std::fprintf(stderr, "rayster: error: %u Vulkan validation error(s)\n", (*ctx)->validationErrors());
-    code = int(ExitCode::Failure);
-  }
-  return code;
-}
-
-int infoCommand() {
-  auto devices = rhi::Context::listDevices();
-  if (!devices) return fail(devices.error());
-  if (devices->empty()) return fail(makeError(ExitCode::NoDevice, "no Vulkan device found"));
-  std::printf("rayster %s (commit %s)\n", buildVersion(), buildCommit());
-  for (const rhi::DeviceInfo& d : *devices) {
-    const rhi::Capabilities& c = d.caps;
-    std::printf("%s (%s)\n", d.name.c_str(), d.typeName());
-    std::printf("  Vulkan %u.%u.%u, driver %s %s, %.1f GiB device-local\n", VK_API_VERSION_MAJOR(d.apiVersion),
-                VK_API_VERSION_MINOR(d.apiVersion), VK_API_VERSION_PATCH(d.apiVersion), d.driverName.c_str(),
-                d.driverInfo.c_str(), double(d.deviceLocalBytes) / (1 << 30));
-    std::printf("  ray-tracing pipeline: %s, acceleration structures: %s, ray queries: %s\n",
-                c.rayTracingPipeline ? "yes" : "no", c.accelerationStructure ? "yes" : "no", c.rayQuery ? "yes" : "no");
-    if (c.rayTracingPipeline)
-      std::printf("  shader group handle %u B (alignment %u, base alignment %u), max recursion %u\n",
-                  c.shaderGroupHandleSize, c.shaderGroupHandleAlignment, c.shaderGroupBaseAlignment,
-                  c.maxRayRecursionDepth);
-    std::printf("  usable by rayster: %s\n", !d.unsuitableReason.empty() ? d.unsuitableReason.c_str()
-                                             : c.rayTracing()            ? "yes"
-                                                                         : "raster mode only (no ray tracing)");
-  }
-  return 0;
+  return validationCode(**ctx);  // after the renderer is gone: its teardown is validated too
 }
 
 }  // namespace rayster::app

@@ -23,13 +23,18 @@ struct RenderOptions {
   std::string device;
   std::string variant;  // --variant: a KHR_materials_variants name ("": the default materials)
   render::RenderSettings settings;
+  // Sequences (app/sequence.h): --frames-out A:B[:STEP] ("": one image), --skip-existing.
+  std::string framesOut;
+  bool skipExisting = false;
+  std::string progress = "auto";  // --progress auto|bar|lines|off
 };
 
 int renderCommand(const RenderOptions& options);
 
+// The PNG of an AOV for looking at (normals as colours, decoded albedo, opaque alpha).
+ImageF aovForDisplay(const std::string& name, ImageF img);
+
 // --move-instance NAME:X,Y,Z@FRAME (render and view): at frame FRAME the instance moves to X,Y,Z.
 Status parseMoves(const std::vector<std::string>& args, std::vector<render::RenderSettings::Move>& moves);
-
-int infoCommand();
 
 }  // namespace rayster::app

@@ -50,6 +50,8 @@ class ExposureControl {
   // Fixed modes take their value; auto starts from `guessEv100` unless it already metered a frame
   // (a restarted viewer run keeps its adapted exposure).
   void begin(const RenderSettings& s, float guessEv100);
+  // The next begin() starts from its guess, as a new renderer's first run does (Renderer::restartHistories).
+  void forget() { metered_ = false; }
   bool automatic() const { return mode_ == ExposureMode::Auto; }
   // This frame's exposure, and its ratio to the previous frame's (what histories written last
   // frame are multiplied by when read: FrameConstants::exposureRatio). Call once per frame.

@@ -247,7 +247,7 @@ RenderOutput::SceneStats Renderer::Impl::sceneStats() const {
 Result<RenderOutput> Renderer::Impl::renderPathTraced(const RenderSettings& s) {
   auto cam = findCamera(s);
   if (!cam) return cam.error();
-  if (s.cameraPath || (scene.animated() && s.animate))
+  if ((s.cameraPath || (scene.animated() && s.animate)) && s.frameOffset == 0)
     log::info("--mode pathtrace renders one image: the camera and the pose at --time ({} s)", s.time);
   if (!pathTracer) pathTracer = std::make_unique<PathTracer>();
   beginExposure(s, **cam);
@@ -278,8 +278,10 @@ Result<RenderOutput> Renderer::Impl::renderPathTraced(const RenderSettings& s) {
   }
   // Emitters that are animated or deform light from that pose too.
   poseEmissiveTriangles(ctx, scene, motion.pose(scene, scene.animated() && !gpu.instanceRecords.empty()), gpu);
-  // A camera on an animated node: where the posing frame left it.
-  const scene::Camera posedCamera = motion.camera(scene, **cam, scene.animated() && !gpu.instanceRecords.empty());
+  // A camera on an animated node: where the posing frame left it; on the camera path, at its frame.
+  scene::Camera posedCamera = motion.camera(scene, **cam, scene.animated() && !gpu.instanceRecords.empty());
+  if (s.cameraPath && !scene.cameraPath.empty())
+    posedCamera = cameraOnPath(posedCamera, s, uint32_t(std::max<int64_t>(0, s.frameOffset)));
   *cam = &posedCamera;
   manyLights = false;
   auto out = pathTracer->render(s, r, exposure.exposure(), write);
@@ -418,6 +420,11 @@ Status Renderer::beginRun(const RenderSettings& settings) {
   Status begun = impl_->beginRun(settings);
   if (begun) impl_->run->adaptExposure = true;  // an interactive run: the exposure follows the view
   return begun;
+}
+
+void Renderer::restartHistories() {
+  impl_->exposure.forget();
+  impl_->gpu.cull->visibilityFresh = true;
 }
 
 void Renderer::updateSettings(const RenderSettings& settings) {

@@ -79,6 +79,10 @@ struct RenderSettings {
   // PassSetting), as text by name; a setting not here has its default.
   std::map<std::string, std::string, std::less<>> passSettings;
   float pathFps = 60.0f;  // frames per second of camera-path and animation playback
+  // The run's frame f shows frame frameOffset + f of the animation and the camera path (the pose at
+  // time + (frameOffset + f) / pathFps); frames before 0 show frame 0. A sequence pre-rolls each
+  // output frame from the frames before it (app/sequence.h, docs/sequences.md).
+  int64_t frameOffset = 0;
   // glTF node animations play from `time` seconds, one frame per 1/pathFps, looping; false holds
   // the pose at `time`.
   bool animate = true;
@@ -200,6 +204,10 @@ class Renderer {
 
   // Incremental rendering, one frame at a time (the viewer). beginRun restarts every history.
   Status beginRun(const RenderSettings& settings);
+  // The next run starts as this renderer's first would: auto exposure from its estimate instead of
+  // the last run's reading, culling with every draw visible. Every other history restarts at any
+  // run's first frame already; with this, a run's images do not depend on the runs before it.
+  void restartHistories();
   FrameStats renderFrame(const FrameControl& control);
   // Takes the settings-table entries that do not restart accumulation (render/settings_table.h
   // Setting::restarts, e.g. the tonemapper) into the current run, from the next frame on.

@@ -57,11 +57,12 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
       motion.set(ctx, gpu, i, w);
     }
   // The pose of this frame first: a camera on an animated node follows it.
+  const uint32_t shown = uint32_t(std::max<int64_t>(0, s.frameOffset + f));  // of the animation and path
   const InstanceMotion::Update posed =
-      motion.update(gpu, r.animated, s.time + (s.animate ? float(f) / s.pathFps : 0.0f), f == 0);
+      motion.update(gpu, r.animated, s.time + (s.animate ? float(shown) / s.pathFps : 0.0f), f == 0);
   const bool moved0 = posed.moved;
   const scene::Camera& base = motion.camera(scene, *r.cam, r.animated);
-  const scene::Camera camera = control.camera ? *control.camera : s.cameraPath ? cameraOnPath(base, s, f) : base;
+  const scene::Camera camera = control.camera ? *control.camera : s.cameraPath ? cameraOnPath(base, s, shown) : base;
   // A cut (the first frame of a run, a jump of the camera, or a listed frame) restarts every history.
   const bool cut = f == 0 || control.cut || isCameraCut(r.prevCamera, camera) ||
                    std::find(s.cuts.begin(), s.cuts.end(), f) != s.cuts.end();

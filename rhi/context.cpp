@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -62,11 +63,14 @@ DeviceInfo describe(VkPhysicalDevice pd) {
   VkPhysicalDeviceAccelerationStructurePropertiesKHR asProps{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceIDProperties id{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES};
   VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   props.pNext = &driver;
   driver.pNext = &rtProps;
   rtProps.pNext = &asProps;
+  asProps.pNext = &id;
   vkGetPhysicalDeviceProperties2(pd, &props);
+  std::copy(std::begin(id.deviceUUID), std::end(id.deviceUUID), info.uuid.begin());
   info.name = props.properties.deviceName;
   info.type = props.properties.deviceType;
   info.apiVersion = props.properties.apiVersion;
@@ -190,11 +194,59 @@ std::vector<DeviceInfo> enumerate(VkInstance instance) {
   std::vector<VkPhysicalDevice> pds(n);
   vkEnumeratePhysicalDevices(instance, &n, pds.data());
   std::vector<DeviceInfo> out;
-  for (VkPhysicalDevice pd : pds) out.push_back(describe(pd));
+  for (VkPhysicalDevice pd : pds) {
+    out.push_back(describe(pd));
+    out.back().index = uint32_t(out.size() - 1);
+  }
   return out;
 }
 
+// "0 llvmpipe (LLVM 19.1.7, 256 bits) 6c6c766d-..., 1 ...": what a failed --device can choose from.
+std::string listForError(const std::vector<DeviceInfo>& devices) {
+  std::string list;
+  for (const DeviceInfo& d : devices)
+    list += (list.empty() ? "" : ", ") + std::to_string(d.index) + " " + d.name + " " + formatDeviceUuid(d.uuid);
+  return list;
+}
+
+bool selects(const DeviceSelector& s, const DeviceInfo& d) {
+  if (s.index) return d.index == *s.index;
+  if (s.uuid) return d.uuid == *s.uuid;
+  return s.nameContains.empty() || d.name.find(s.nameContains) != std::string::npos;
+}
+
+std::string describeSelector(const DeviceSelector& s) {
+  if (s.index) return "index " + std::to_string(*s.index);
+  if (s.uuid) return "UUID " + formatDeviceUuid(*s.uuid);
+  return "'" + s.nameContains + "'";
+}
+
 }  // namespace
+
+std::string formatDeviceUuid(const DeviceUuid& uuid) {
+  std::string text;
+  for (size_t i = 0; i < uuid.size(); ++i) {
+    if (i == 4 || i == 6 || i == 8 || i == 10) text += '-';
+    char hex[3];
+    std::snprintf(hex, sizeof hex, "%02x", uuid[i]);
+    text += hex;
+  }
+  return text;
+}
+
+std::optional<DeviceUuid> parseDeviceUuid(std::string_view text) {
+  std::string digits;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '-' && (digits.size() == 8 || digits.size() == 12 || digits.size() == 16 || digits.size() == 20)) continue;
+    if (!std::isxdigit(static_cast<unsigned char>(c))) return std::nullopt;
+    digits += c;
+  }
+  if (digits.size() != 2 * VK_UUID_SIZE) return std::nullopt;
+  DeviceUuid uuid{};
+  for (size_t i = 0; i < uuid.size(); ++i) uuid[i] = uint8_t(std::stoul(digits.substr(2 * i, 2), nullptr, 16));
+  return uuid;
+}
 
 const char* DeviceInfo::typeName() const {
   switch (type) {
@@ -243,8 +295,9 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
   if (devices.empty()) return makeError(ExitCode::NoDevice, "no Vulkan device found (is a Vulkan driver installed?)");
   std::vector<DeviceInfo> candidates;
   std::string rejected;
+  const DeviceSelector& want = options.deviceFilter;
   for (auto& d : devices) {
-    if (!options.deviceFilter.empty() && d.name.find(options.deviceFilter) == std::string::npos) continue;
+    if (!selects(want, d)) continue;
     if (!d.unsuitableReason.empty()) {
       rejected += (rejected.empty() ? "" : "; ") + d.name + " " + d.unsuitableReason;
       continue;
@@ -252,8 +305,10 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     candidates.push_back(d);
   }
   if (candidates.empty()) {
-    if (!options.deviceFilter.empty() && rejected.empty())
-      return makeError(ExitCode::NoDevice, "no Vulkan device matches '{}'", options.deviceFilter);
+    const bool selected = want.index || want.uuid || !want.nameContains.empty();
+    if (selected && rejected.empty())
+      return makeError(ExitCode::NoDevice, "no Vulkan device has {} (devices: {})", describeSelector(want),
+                       listForError(devices));
     return makeError(ExitCode::NoDevice, "no usable Vulkan device: {}", rejected);
   }
   std::stable_sort(candidates.begin(), candidates.end(),

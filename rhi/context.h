@@ -2,10 +2,13 @@
 // The Vulkan instance, the chosen physical device, the logical device, its universal queue and,
 // where the device has one, a transfer-only queue for uploads (its copy engine). Also owns the memory allocator, the
 // timeline semaphore that orders submissions and the deferred destruction list ("destroyed a frame later").
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <volk.h>
@@ -31,8 +34,18 @@ struct Capabilities {
   bool rayTracing() const { return rayTracingPipeline && accelerationStructure; }
 };
 
+// VkPhysicalDeviceIDProperties::deviceUUID: the same physical GPU has the same UUID in every
+// process (nvidia-smi -L shows it too), unlike the enumeration index, which a driver may reorder.
+using DeviceUuid = std::array<uint8_t, VK_UUID_SIZE>;
+// 32 lower-case hex digits with dashes, 8-4-4-4-12.
+std::string formatDeviceUuid(const DeviceUuid& uuid);
+// The same text (either case; the dashes may be left out); nothing when it is not one.
+std::optional<DeviceUuid> parseDeviceUuid(std::string_view text);
+
 struct DeviceInfo {
   VkPhysicalDevice handle = VK_NULL_HANDLE;
+  uint32_t index = 0;  // position in vkEnumeratePhysicalDevices' order (rayster info)
+  DeviceUuid uuid{};
   std::string name;
   VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
   uint32_t apiVersion = 0;
@@ -50,10 +63,21 @@ struct DeviceInfo {
 // copies images of any size (granularity 1×1×1); UINT32_MAX when the device has none.
 uint32_t pickTransferFamily(const std::vector<VkQueueFamilyProperties>& families, uint32_t universalFamily);
 
+// Which physical device to use: one by index or UUID, or the best of those whose name contains a
+// text (empty: the best of all). The command line's --device is parsed into one by the app.
+struct DeviceSelector {
+  std::optional<uint32_t> index;
+  std::optional<DeviceUuid> uuid;
+  std::string nameContains;
+  DeviceSelector() = default;
+  DeviceSelector(std::string name) : nameContains(std::move(name)) {}  // NOLINT: a name is the common case
+  DeviceSelector(const char* name) : nameContains(name) {}             // NOLINT
+};
+
 struct ContextOptions {
   bool validation = false;        // Khronos validation layer + synchronization validation
   bool requireRayTracing = true;  // fail with MissingCapability when absent
-  std::string deviceFilter;       // substring of the device name to prefer; empty: best device
+  DeviceSelector deviceFilter;    // empty: the best device
   bool debugLabels = true;        // pass labels and object names for captures and validation messages
   // Windowed use only (headless needs no surface): the window system's instance extensions and a
   // callback that creates the window's surface; the device then also gets VK_KHR_swapchain and a

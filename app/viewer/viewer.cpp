@@ -15,6 +15,8 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include "app/device_option.h"
+#include "app/render_command.h"
 #include "app/viewer/camera_control.h"
 #include "app/viewer/presenter.h"
 #include "app/viewer/selection.h"
@@ -30,7 +32,6 @@
 namespace rayster::app {
 
 void recordHistory(std::deque<float>& history, float value);
-ImageF aovForDisplay(const std::string& name, ImageF img);  // render_command.cpp
 
 namespace {
 
@@ -439,7 +440,7 @@ int runViewer(const ViewOptions& o) {
   if (!window.ok()) return fail(makeError(ExitCode::NoDevice, "{}", window.error()));
   rhi::ContextOptions co{o.validation,
                          true,
-                         o.device,
+                         deviceSelector(o.device),
                          o.debugLabels,
                          Window::requiredInstanceExtensions(),
                          [&](VkInstance i, VkSurfaceKHR* s) { return window.createSurface(i, s); }};
