@@ -157,10 +157,6 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
                                         const ProbeFrame& frame, ProbeLookup& lookup) {
   gpu::ProbeGrid grid = fitProbeGrid(in.scene.bounds.min, in.scene.bounds.max, frame.eye, frame.cascades);
   const uint32_t probes = grid.counts.x * grid.counts.y * grid.counts.z * grid.cascades;
-  fprintf(stderr, "DBG bounds %g %g %g .. %g %g %g spacing %g %g %g counts %u %u %u cascades %u\n",
-          in.scene.bounds.min.x, in.scene.bounds.min.y, in.scene.bounds.min.z, in.scene.bounds.max.x,
-          in.scene.bounds.max.y, in.scene.bounds.max.z, grid.spacing.x, grid.spacing.y, grid.spacing.z, grid.counts.x,
-          grid.counts.y, grid.counts.z, grid.cascades);
   const auto irradiance =
       graph.history("gi-probe-irradiance", atlasDesc(grid, gpu::kProbeIrradianceTexels, VK_FORMAT_R16G16B16A16_SFLOAT),
                     kRadianceImage);
