@@ -1,7 +1,7 @@
 // Irradiance probes (shared/probes.h, docs/techniques.md §16b): indexing, ray directions, atlas
 // addressing and the lookup of irradiance at a surface point from its eight surrounding probes with
-// trilinear, back-face and Chebyshev visibility weights, in the finest cascade around it. The includer declares (unless it defines
-// PROBES_NO_LOOKUP)
+// trilinear, back-face and Chebyshev visibility weights, in the finest cascade around it. The
+// includer declares (unless it defines PROBES_NO_LOOKUP)
 //   uniform sampler2D probeIrradianceTex;  // linear filtering, clamp
 //   uniform sampler2D probeVisibilityTex;
 //   uniform sampler2D probeDataTex;        // (probe, 0): offset and state (probe_classify.comp)
@@ -37,11 +37,6 @@ ivec3 probeLattice(ProbeGrid g, uint i) {
 }
 vec3 probeWorldPosition(ProbeGrid g, uint i) {
   return g.origin + vec3(probeLattice(g, i)) * probeSpacing(g, probeCascade(g, i));
-}
-// The probe at window coordinate c (0 .. counts − 1) of cascade k.
-uint probeIndexAt(ProbeGrid g, uint k, ivec3 c) {
-  ivec3 s = (probeWindow(g, k) + c) % ivec3(g.counts);
-  return k * probesPerCascade(g) + uint(s.x) + g.counts.x * (uint(s.y) + g.counts.y * uint(s.z));
 }
 // The probe's lattice point entered its cascade's window at this update (the window scrolled with
 // the camera): the atlases and data of the update before hold another point's light there.
@@ -109,19 +104,34 @@ float probeCascadeIrradiance(ProbeGrid g, uint k, vec3 p, vec3 n, vec3 v, bool w
                              out vec3 er) {
   vec2 irradianceSize = vec2(textureSize(probeIrradianceTex, 0));
   vec2 visibilitySize = vec2(textureSize(probeVisibilityTex, 0));
-  vec3 biased = p + (n * g.normalBias + v * g.viewBias) * probeMinSpacing(g, k);
-  vec3 cellPos = clamp(probeCascadePosition(g, k, biased), vec3(0.0), vec3(g.counts - 1u));
-  ivec3 base = min(ivec3(floor(cellPos)), ivec3(g.counts) - 2);
+  // Per cascade once (no division per probe): its spacing, window, the window's slot offset and
+  // whether (and from where) it moved since the update before.
+  vec3 spacing = probeSpacing(g, k);
+  ivec3 counts = ivec3(g.counts), window = probeWindow(g, k);
+  ivec3 slotOffset = window % counts;
+  bool moved = (g.cascadeCells[k].x & kProbeWindowMoved) != 0u;
+  ivec3 previous = probeUnpackCell(g.cascadeCells[k].y);
+  uint first = k * probesPerCascade(g);
+  vec3 biased = p + (n * g.normalBias + v * g.viewBias) * min(spacing.x, min(spacing.y, spacing.z));
+  vec3 cellPos = clamp((biased - g.origin) / spacing - vec3(window), vec3(0.0), vec3(counts - 1));
+  ivec3 base = min(ivec3(floor(cellPos)), counts - 2);
   vec3 alpha = clamp(cellPos - vec3(base), 0.0, 1.0);
   vec3 sum = vec3(0.0), sumR = vec3(0.0);
   float weightSum = 0.0;
   for (int i = 0; i < 8; ++i) {
     ivec3 offset = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-    uint probe = probeIndexAt(g, k, base + offset);
+    ivec3 c = base + offset;  // in the window
+    ivec3 slot = slotOffset + c;
+    slot -= mix(ivec3(0), counts, greaterThanEqual(slot, counts));  // (window + c) % counts
+    uint probe = first + uint(slot.x) + g.counts.x * (uint(slot.y) + g.counts.y * uint(slot.z));
+    ivec3 lattice = window + c;
+    if (moved) {  // probeFresh(): its light is of another place until it is updated
+      ivec3 d = lattice - previous;
+      if (any(lessThan(d, ivec3(0))) || any(greaterThanEqual(d, counts))) continue;
+    }
     vec4 data = probeData(g, probe);
-    if (data.w < 0.5) continue;             // inactive: inside geometry, or no surface near it
-    if (probeFresh(g, probe)) continue;     // its light is of another place until it is updated
-    vec3 probePos = probeWorldPosition(g, probe) + data.xyz;
+    if (data.w < 0.5) continue;  // inactive: inside geometry, or no surface near it
+    vec3 probePos = g.origin + vec3(lattice) * spacing + data.xyz;
     vec3 trilinear = mix(1.0 - alpha, alpha, vec3(offset));
     float weight = trilinear.x * trilinear.y * trilinear.z;
     vec3 toProbe = normalize(probePos - p);
@@ -155,6 +165,10 @@ float probeCascadeIrradiance(ProbeGrid g, uint k, vec3 p, vec3 n, vec3 v, bool w
 // edge it fades into the next coarser one, and a cascade whose eight probes are all inactive
 // leaves p to the next. The coarsest cascade holds the whole scene.
 void probeIrradiance2(ProbeGrid g, vec3 p, vec3 n, vec3 v, bool withR, vec3 r, out vec3 e, out vec3 er) {
+  if (g.cascades == 1u) {  // a small scene's one grid
+    probeCascadeIrradiance(g, 0u, p, n, v, withR, r, e, er);
+    return;
+  }
   e = vec3(0.0);
   er = vec3(0.0);
   float remaining = 1.0;
