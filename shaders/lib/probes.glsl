@@ -162,36 +162,38 @@ float probeCascadeIrradiance(ProbeGrid g, uint k, vec3 p, vec3 n, vec3 v, bool w
 // Irradiance at p (shading normal n, direction to the viewer v) in the directions n (e) and r (er:
 // probeIrradiance2 only, the mirror direction for the untraced specular light; one set of weights
 // for both), from the finest cascade whose window holds p; within its last cell of the window's
-// edge it fades into the next coarser one, and a cascade whose eight probes are all inactive
-// leaves p to the next. The coarsest cascade holds the whole scene.
+// edge it fades into the next coarser one, and where its eight probes are all inactive the next
+// coarser one lights p alone. The coarsest cascade holds the whole scene.
 void probeIrradiance2(ProbeGrid g, vec3 p, vec3 n, vec3 v, bool withR, vec3 r, out vec3 e, out vec3 er) {
-  if (g.cascades == 1u) {  // a small scene's one grid
-    probeCascadeIrradiance(g, 0u, p, n, v, withR, r, e, er);
-    return;
-  }
   e = vec3(0.0);
   er = vec3(0.0);
+  // The finest cascade whose window holds p, and its weight (1 inside, fading over the last cell).
+  uint k = 0u;
+  float w = 1.0;
+  for (; k + 1u < g.cascades; ++k) {
+    // The distance to the window's edges, in its cells; an edge on the coarsest grid's face does
+    // not count (past it every cascade clamps alike: the margin between the bounds and the probes).
+    vec3 c = probeCascadePosition(g, k, p);
+    ivec3 cell = probeWindow(g, k), last = (ivec3(g.counts) - 1) * (probeScale(g, k) - 1);
+    vec3 below = mix(c, vec3(1e9), equal(cell, ivec3(0)));
+    vec3 above = mix(vec3(g.counts - 1u) - c, vec3(1e9), equal(cell, last));
+    vec3 toEdge = min(below, above);
+    w = clamp(min(toEdge.x, min(toEdge.y, toEdge.z)), 0.0, 1.0);
+    if (w > 0.0) break;
+  }
+  if (k + 1u == g.cascades) w = 1.0;
+  // It and, where it fades or has no active probe around p, the next coarser one: one call site
+  // (a small scene's one grid runs it once).
   float remaining = 1.0;
-  for (uint k = 0u; k < g.cascades && remaining > 0.0; ++k) {
-    float w = 1.0;
-    if (k + 1u < g.cascades) {
-      // The distance to the window's edges, in its cells; an edge on the coarsest grid's face does
-      // not count (past it every cascade clamps alike: the margin between the bounds and the probes).
-      vec3 c = probeCascadePosition(g, k, p);
-      ivec3 cell = probeWindow(g, k), last = (ivec3(g.counts) - 1) * (probeScale(g, k) - 1);
-      vec3 below = mix(c, vec3(1e9), equal(cell, ivec3(0)));
-      vec3 above = mix(vec3(g.counts - 1u) - c, vec3(1e9), equal(cell, last));
-      vec3 toEdge = min(below, above);
-      w = clamp(min(toEdge.x, min(toEdge.y, toEdge.z)), 0.0, 1.0);
-      if (w <= 0.0) continue;  // outside this cascade's window
-    }
+  for (uint pass = 0u; pass < 2u && k < g.cascades && remaining > 0.0; ++pass, ++k) {
+    if (pass == 1u) w = 1.0;  // the coarser cascade takes what the finer one left
     vec3 ek, erk;
     if (probeCascadeIrradiance(g, k, p, n, v, withR, r, ek, erk) <= 0.0) continue;
     e += remaining * w * ek;
     er += remaining * w * erk;
     remaining *= 1.0 - w;
   }
-  if (remaining > 0.0 && remaining < 1.0) {  // the coarsest had no probe to give: the finer ones' share is all
+  if (remaining > 0.0 && remaining < 1.0) {  // the coarser had no probe to give: the finer one's share is all
     e /= 1.0 - remaining;
     er /= 1.0 - remaining;
   }
