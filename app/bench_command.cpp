@@ -14,11 +14,13 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
 
 #include "app/bench_report.h"
+#include "app/bench_shard.h"
 #include "app/build_info.h"
 #include "app/device_option.h"
 #include "core/log.h"
@@ -227,13 +229,35 @@ void printSummary(const json& c) {
   std::fflush(stdout);
 }
 
+// The results as JSON, CSV and SVG (the CSV and SVG beside the JSON unless given).
+Status writeResults(const BenchOptions& o, const json& results) {
+  const std::string csvPath = o.csv.empty() ? withExtension(o.json, ".csv") : o.csv;
+  const std::string svgPath = o.svg.empty() ? withExtension(o.json, ".svg") : o.svg;
+  if (auto s = writeText(o.json, results.dump(1) + "\n"); !s) return s;
+  if (auto s = writeText(csvPath, benchCsv(results)); !s) return s;
+  if (auto s = writeText(svgPath, benchSvg(results)); !s) return s;
+  size_t failures = 0;
+  for (const auto& c : results["configs"]) failures += c.value("ok", false) ? 0 : 1;
+  log::info("wrote {}, {}, {} ({} configuration(s), {} failed)", o.json, csvPath, svgPath, results["configs"].size(),
+            failures);
+  return okStatus();
+}
+
 int parentCommand(const BenchOptions& o) {
   auto plan = o.plan.empty() ? planFromAxes(o.axes) : loadPlan(o.plan);
   if (!plan) return fail(plan.error());
   if (fs::path(o.json).extension() != ".json")
     return fail(makeError(ExitCode::BadArguments, "--json '{}' must end in .json", o.json));
-  const std::string csvPath = o.csv.empty() ? withExtension(o.json, ".csv") : o.csv;
-  const std::string svgPath = o.svg.empty() ? withExtension(o.json, ".svg") : o.svg;
+  std::optional<Shard> shard;
+  const size_t planConfigs = plan->configs.size();
+  if (!o.shard.empty()) {
+    auto s = parseShard(o.shard);
+    if (!s) return fail(s.error());
+    shard = *s;
+    *plan = shardOf(*plan, *shard);
+    log::info("bench: shard {}/{} runs {} of the plan's {} configuration(s)", shard->index, shard->count,
+              plan->configs.size(), planConfigs);
+  }
   const fs::path work = fs::path(o.json).string() + ".parts";
   std::error_code ec;
   fs::create_directories(work, ec);
@@ -245,6 +269,7 @@ int parentCommand(const BenchOptions& o) {
   gethostname(host, sizeof host - 1);
   results["host"] = host;
   results["configs"] = json::array();
+  if (shard) results["shard"] = shardJson(*shard, planConfigs);
   size_t failures = 0;
   for (size_t i = 0; i < plan->configs.size(); ++i) {
     const BenchConfig& c = plan->configs[i];
@@ -279,12 +304,25 @@ int parentCommand(const BenchOptions& o) {
     results["configs"].push_back(r);
   }
   fs::remove_all(work, ec);
-  if (auto s = writeText(o.json, results.dump(1) + "\n"); !s) return fail(s.error());
-  if (auto s = writeText(csvPath, benchCsv(results)); !s) return fail(s.error());
-  if (auto s = writeText(svgPath, benchSvg(results)); !s) return fail(s.error());
-  log::info("wrote {}, {}, {} ({} configuration(s), {} failed)", o.json, csvPath, svgPath, plan->configs.size(),
-            failures);
+  if (auto s = writeResults(o, results); !s) return fail(s.error());
   return failures == 0 ? 0 : int(ExitCode::Failure);
+}
+
+int mergeCommand(const BenchOptions& o) {
+  if (fs::path(o.json).extension() != ".json")
+    return fail(makeError(ExitCode::BadArguments, "--json '{}' must end in .json", o.json));
+  std::vector<json> shards;
+  for (const std::string& path : o.merge) {
+    auto j = readJson(path);
+    if (!j) return fail(j.error());
+    shards.push_back(std::move(*j));
+  }
+  auto merged = mergeShards(shards, o.merge);
+  if (!merged) return fail(merged.error());
+  if (auto s = writeResults(o, *merged); !s) return fail(s.error());
+  for (const auto& c : (*merged)["configs"])
+    if (!c.value("ok", false)) return int(ExitCode::Failure);  // as the unsharded run would
+  return 0;
 }
 
 int compareCommandBench(const BenchOptions& o) {
@@ -315,6 +353,11 @@ int benchCommand(const BenchOptions& o) {
     return compareCommandBench(o);
   }
   if (!o.child.empty()) return childCommand(o);
+  if (!o.merge.empty()) {
+    if (!o.shard.empty() || !o.plan.empty())
+      return fail(makeError(ExitCode::BadArguments, "--merge runs nothing: it takes no --plan or --shard"));
+    return mergeCommand(o);
+  }
   return parentCommand(o);
 }
 

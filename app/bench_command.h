@@ -12,6 +12,8 @@ namespace rayster::app {
 struct BenchOptions {
   BenchAxes axes;
   std::string plan;                           // a JSON plan instead of the axes
+  std::string shard;                          // "i/n": run every n-th configuration (app/bench_shard.h)
+  std::vector<std::string> merge;             // shard results to merge into --json instead of running
   std::string json = "bench-out/bench.json";  // results; CSV and SVG default to the same stem
   std::string csv, svg;
   std::vector<std::string> compare;  // two result files: compare instead of running

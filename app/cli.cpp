@@ -13,6 +13,7 @@
 #include "app/build_info.h"
 #include "app/commands.h"
 #include "app/compare_command.h"
+#include "app/farm_command.h"
 #include "app/info_command.h"
 #include "app/render_command.h"
 #include "app/settings_cli.h"
@@ -166,20 +167,45 @@ void addRenderCommand(CLI::App& cli, RenderArgs& a) {
   addRenderReportOptions(a.app, a);
 }
 
-// The parsed words of `rayster render` into its settings, then the render.
-int runRender(RenderArgs& a, const GlobalOptions& g) {
+// The parsed words of `rayster render` into its settings.
+Status convertRenderArgs(RenderArgs& a, const GlobalOptions& g) {
   RenderOptions& ro = a.options;
   if (!parseSize(a.size, ro.settings.width, ro.settings.height))
-    return badArguments("--size must be WxH with 1..16384 each, got '" + a.size + "'");
-  if (Status applied = applySettings(a.settings, ro.settings); !applied) return badArguments(applied.error().message);
+    return makeError(ExitCode::BadArguments, "--size must be WxH with 1..16384 each, got '{}'", a.size);
+  if (Status applied = applySettings(a.settings, ro.settings); !applied) return applied;
   if (a.spp > 0) ro.settings.frames = a.spp;
   ro.sizeGiven = a.app->count("--size") > 0;
   ro.framesGiven = a.app->count("--frames") > 0 || a.spp > 0;
-  if (Status m = parseMoves(a.moveInstance, ro.settings.moves); !m) return badArguments(m.error().message);
+  if (Status m = parseMoves(a.moveInstance, ro.settings.moves); !m) return m;
   ro.validation = g.validation;
   ro.device = g.device;
   ro.debugLabels = !g.noLabels;
-  return renderCommand(ro);
+  return okStatus();
+}
+
+int runRender(RenderArgs& a, const GlobalOptions& g) {
+  if (Status s = convertRenderArgs(a, g); !s) return badArguments(s.error().message);
+  return renderCommand(a.options);
+}
+
+// `farm slurm`'s pass-through options, parsed and converted as `rayster render ARGS` would.
+Status checkRenderArgs(const std::vector<std::string>& args) {
+  CLI::App cli;
+  GlobalOptions g;
+  addGlobalOptions(cli, g);
+  RenderArgs a;
+  addRenderCommand(cli, a);
+  a.app->fallthrough();
+  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
+  reversed.push_back("render");
+  try {
+    cli.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    return makeError(ExitCode::BadArguments, "{}", e.what());
+  }
+  if (a.app->count("scene") > 0)
+    return makeError(ExitCode::BadArguments, "unexpected '{}' (the scene goes before --)", a.options.scene);
+  return convertRenderArgs(a, g);
 }
 
 CLI::App* addBenchCommand(CLI::App& cli, BenchOptions& bo) {
@@ -206,6 +232,13 @@ CLI::App* addBenchCommand(CLI::App& cli, BenchOptions& bo) {
                   "with trivial shaders and report each pass's share of that raw ray rate (raw_fraction)");
   addSettingOptions(bench, render::kUseBench, bo.axes.settings);  // applied to every configuration
   bench->add_option("--plan", bo.plan, "A JSON plan of sweeps (bench/plans/*.json) instead of the axes above");
+  bench->add_option("--shard", bo.shard,
+                    "I/N: run only configurations I, I+N, I+2N, ... of the plan (1-based; docs/farm.md); the JSON "
+                    "records the shard for --merge");
+  bench
+      ->add_option("--merge", bo.merge,
+                   "Merge the results of every --shard I/N of one plan into --json, in plan order, instead of running")
+      ->expected(1, -1);
   bench->add_option("--json", bo.json, "Results (default bench-out/bench.json); CSV and SVG beside it");
   bench->add_option("--csv", bo.csv, "CSV output (default: the --json path with .csv)");
   bench->add_option("--svg", bo.svg, "SVG plot (default: the --json path with .svg)");
@@ -289,6 +322,9 @@ int run(int argc, char** argv) {
   CLI::App* compare = addCompareCommand(cli, co);
   ViewCommand view;
   addViewCommand(cli, view);
+  FarmOptions farm;
+  farm.checkRenderArgs = checkRenderArgs;
+  CLI::App* farmApp = addFarmCommand(cli, farm);
   render.app->fallthrough();  // global options (-v, --validation, --device) also after the subcommand
   info->fallthrough();
 
@@ -307,6 +343,7 @@ int run(int argc, char** argv) {
   if (compare->parsed()) return compareCommand(co);
   if (view.app->parsed()) return viewCommand(view, global.validation, global.device, !global.noLabels);
   if (render.app->parsed()) return runRender(render, global);
+  if (farmApp->parsed()) return farmCommand(farm);
   return int(ExitCode::BadArguments);
 }
 

@@ -29,6 +29,7 @@ PACKAGES=(
   libdraco-dev libmeshoptimizer-dev libzstd-dev  # compressed glTF: Draco, meshopt, KTX2 zstd
   clang-format-14  # scripts/format.sh: the formatting CI checks (.ci/run)
   libglfw3-dev libimgui-dev xvfb xauth  # the viewer, and its tests under a virtual X server
+  slurm-wlm slurmctld slurmd slurm-client munge  # farm_slurm: a real one-machine Slurm (docs/farm.md)
 )
 
 missing=()
