@@ -29,7 +29,10 @@ constexpr const char* kExitCodes =
     "  0 ok, 1 other failure (or validation errors with --validation), 2 bad arguments,\n"
     "  3 missing or invalid input file, 4 no Vulkan device (or none matching --device), 5 missing capability\n"
     "  (ray tracing with --require-rt), 6 device lost, 7 out of memory, 8 output could not be written, 9 comparison "
-    "over budget";
+    "over budget,\n"
+    "  130/143 render stopped by SIGINT/SIGTERM (the frame being rendered dropped; every file left is whole).\n"
+    "  Retryable (--skip-existing resumes a sequence): 4, 6, 7, 8, 130, 143. Permanent (the same command fails\n"
+    "  the same way): 2, 3, 5, 9. 1 is unexpected: retry once, then report it.";
 
 bool parseSize(const std::string& text, uint32_t& w, uint32_t& h) {
   unsigned a = 0, b = 0;

@@ -18,8 +18,10 @@
 #include "app/sequence.h"
 #include "app/settings_cli.h"
 #include "core/image_io.h"
+#include "core/interrupt.h"
 #include "core/log.h"
 #include "rhi/context.h"
+#include "rhi/fault_injection.h"
 #include "scene/loader.h"
 
 namespace rayster::app {
@@ -255,11 +257,21 @@ Status renderRange(const rhi::Context& ctx, render::Renderer& renderer, const Re
   return okStatus();
 }
 
+// A signal while the image accumulates drops it (nothing is written); one after it is rendered
+// lets it be written, whole, before the run ends with the signal's code.
 Status renderStill(const rhi::Context& ctx, render::Renderer& renderer, const RenderOptions& o,
                    render::RenderSettings settings, ProgressStyle progress) {
   const auto t0 = std::chrono::steady_clock::now();
   if (settings.frames > 1) settings.progress = frameProgress(progress);
+  settings.stop = []() -> std::optional<Error> {
+    if (const int signal = interruptSignal()) return interruptedError(signal, "");
+    return std::nullopt;
+  };
+  if (interruptSignal()) return interruptedError(interruptSignal(), o.output + " not rendered");
+  if (o.failAt && o.failAt->frame == 0) rhi::failNextSubmit(o.failAt->result);
   auto out = renderer.render(settings);
+  if (!out && interruptSignal() && out.error().code == interruptExitCode(interruptSignal()))
+    return interruptedError(interruptSignal(), fmt::format("{} not written (stopped while accumulating)", o.output));
   if (!out) return out.error();
   const double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (Status s = writeFrameImages(o, o.output, o.hdrOutput, *out); !s) return s;
@@ -269,12 +281,20 @@ Status renderStill(const rhi::Context& ctx, render::Renderer& renderer, const Re
     if (Status s = writeFileAtomically(o.jsonOutput, timingsJson(ctx, o, settings, *out).dump(2) + "\n"); !s) return s;
   log::info("wrote {} ({}x{}, {} frames, primary {}, {:.0f} ms)", o.output, settings.width, settings.height,
             settings.frames, render::primaryName(out->primaryUsed), wallMs);
+  if (const int signal = interruptSignal()) return interruptedError(signal, o.output + " written before stopping");
   return okStatus();
 }
 
 }  // namespace
 
-int renderCommand(const RenderOptions& o) {
+int renderCommand(const RenderOptions& options) {
+  // Until rendering starts a signal ends the process at once (there is nothing to finish);
+  // while it renders, the loop stops at its next check (core/interrupt.h).
+  installInterruptHandlers();
+  RenderOptions o = options;
+  auto failAt = injectedRenderFailure();
+  if (!failAt) return fail(failAt.error());
+  o.failAt = *failAt;
   // Check everything about the outputs before any GPU work, so bad arguments fail fast.
   if (auto s = checkOutputPath(o.output, "output", {".png", ".exr"}); !s) return fail(s.error());
   if (!o.hdrOutput.empty())
@@ -315,6 +335,7 @@ int renderCommand(const RenderOptions& o) {
     log::debug("scene on the device in {:.0f} ms",
                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - uploadStart).count());
     settings.aovs = *aovs;
+    const InterruptScope interruptible;
     Status done = *sequence ? renderRange(**ctx, **renderer, o, settings, **sequence, *progress)
                             : renderStill(**ctx, **renderer, o, settings, *progress);
     if (!done) return fail(done.error());

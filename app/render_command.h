@@ -2,6 +2,7 @@
 #include <string>
 #include <vector>
 
+#include "app/fault_injection.h"
 #include "render/renderer.h"
 
 namespace rayster::app {
@@ -27,6 +28,8 @@ struct RenderOptions {
   std::string framesOut;
   bool skipExisting = false;
   std::string progress = "auto";  // --progress auto|bar|lines|off
+  // Tests only: RAYSTER_RENDER_FAIL_AT's device loss or exhaustion (app/fault_injection.h).
+  std::optional<InjectedFailure> failAt;
 };
 
 int renderCommand(const RenderOptions& options);

@@ -33,7 +33,10 @@ struct SequenceResult {
 };
 
 // Renders and writes the range; the first failure (a failed write: ExitCode::OutputFailed) stops
-// it, after the frames already queued are written. Frames before it stay on disk, whole.
+// it, after the frames already queued are written. Frames before it stay on disk, whole. A
+// SIGINT/SIGTERM (core/interrupt.h) drops the frame being rendered, writes the queued ones and
+// ends with exit 130/143 (kExitInterrupted/kExitTerminated); a device loss or memory exhaustion (which ends the
+// process in VK_CHECK) writes the queued frames first. o.failAt injects one (tests).
 Result<SequenceResult> renderSequence(render::Renderer& renderer, const RenderOptions& o,
                                       const render::RenderSettings& settings, const FrameRange& range,
                                       ProgressStyle progress);

@@ -23,6 +23,7 @@
 #include <stb_image_write.h>
 #include <tinyexr.h>
 
+#include "core/interrupt.h"
 #include "core/log.h"
 
 namespace fs = std::filesystem;
@@ -37,7 +38,11 @@ std::string lowerExtension(const fs::path& path) {
   return ext;
 }
 
-Error writeError(const fs::path& path, const std::string& reason) {
+// strerror's reasons start with a capital ("No space left on device"); mid-line they read lower.
+Error writeError(const fs::path& path, std::string reason) {
+  if (reason.size() > 1 && std::isupper(static_cast<unsigned char>(reason[0])) &&
+      std::islower(static_cast<unsigned char>(reason[1])))
+    reason[0] = char(std::tolower(static_cast<unsigned char>(reason[0])));
   return makeError(ExitCode::OutputFailed, "cannot write {}: {}", path.string(), reason);
 }
 
@@ -53,6 +58,7 @@ Status writeAtomically(const fs::path& path, Produce&& produce) {
   }
   fs::path temp = path;
   temp += ".tmp-" + std::to_string(::getpid());
+  const TempFileInProgress tracked(temp);  // a second SIGINT/SIGTERM unlinks it (core/interrupt.h)
   std::string reason;
   if (!produce(temp, reason)) {
     fs::remove(temp, ec);
@@ -212,6 +218,48 @@ Status writeHdr(const fs::path& path, const ImageF& image) {
   });
 }
 
+// What tinyexr's SaveEXR writes (RGBA stored as ABGR planes; uncompressed below 16x16, ZIP
+// otherwise), into memory. Empty on failure, with `error` set.
+std::vector<uint8_t> encodeExr(const ImageF& image, bool half, std::string& error) {
+  const size_t pixels = size_t(image.width) * image.height;
+  std::vector<float> planes[4];
+  for (int c = 0; c < 4; ++c) {
+    planes[c].resize(pixels);
+    for (size_t i = 0; i < pixels; ++i) planes[c][i] = image.rgba[i * 4 + c];
+  }
+  float* abgr[4] = {planes[3].data(), planes[2].data(), planes[1].data(), planes[0].data()};
+  EXRImage exr;
+  InitEXRImage(&exr);
+  exr.num_channels = 4;
+  exr.images = reinterpret_cast<unsigned char**>(abgr);
+  exr.width = image.width;
+  exr.height = image.height;
+  EXRHeader header;
+  InitEXRHeader(&header);
+  header.compression_type =
+      image.width < 16 && image.height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE : TINYEXR_COMPRESSIONTYPE_ZIP;
+  EXRChannelInfo channels[4] = {};
+  int pixelTypes[4], requestedTypes[4];
+  for (int c = 0; c < 4; ++c) {
+    channels[c].name[0] = "ABGR"[c];
+    pixelTypes[c] = TINYEXR_PIXELTYPE_FLOAT;
+    requestedTypes[c] = half ? TINYEXR_PIXELTYPE_HALF : TINYEXR_PIXELTYPE_FLOAT;
+  }
+  header.num_channels = 4;
+  header.channels = channels;
+  header.pixel_types = pixelTypes;
+  header.requested_pixel_types = requestedTypes;
+  unsigned char* memory = nullptr;
+  const char* err = nullptr;
+  const size_t size = SaveEXRImageToMemory(&exr, &header, &memory, &err);
+  std::vector<uint8_t> bytes;
+  if (size > 0 && memory) bytes.assign(memory, memory + size);
+  std::free(memory);
+  if (bytes.empty()) error = err ? err : "EXR encoding failed";
+  if (err) FreeEXRErrorMessage(err);
+  return bytes;
+}
+
 }  // namespace
 
 std::string stbDecodeHazard(const uint8_t* d, size_t n) {
@@ -280,17 +328,13 @@ Status writeExr(const fs::path& path, const ImageF& image, ExrPixels pixels) {
               half ? "the half-float range" : "the float range", half ? "65504" : "the largest float",
               half ? " (--exr-float writes 32-bit floats)" : "");
   if (changed.nan > 0) log::warn("{}: {} NaN value(s) written as 0", path.string(), changed.nan);
-  return writeAtomically(path, [&](const fs::path& temp, std::string& reason) {
-    const char* err = nullptr;
-    const int rc =
-        SaveEXR(finite.rgba.data(), finite.width, finite.height, 4, /*save_as_fp16=*/half ? 1 : 0, temp.c_str(), &err);
-    if (rc != TINYEXR_SUCCESS) {
-      reason = err ? err : fmt::format("EXR encoder error {}", rc);
-      if (err) FreeEXRErrorMessage(err);
-      return false;
-    }
-    return true;
-  });
+  // Encoded in memory and written by writeBytes, which checks fclose: tinyexr's own file writer
+  // ignores it, and a full disk often fails only there (it renamed a truncated file into place).
+  std::string encodeError;
+  const std::vector<uint8_t> bytes = encodeExr(finite, half, encodeError);
+  if (bytes.empty()) return writeError(path, encodeError);
+  return writeAtomically(path,
+                         [&](const fs::path& temp, std::string& reason) { return writeBytes(temp, bytes, reason); });
 }
 
 Result<Image8> readPng(const fs::path& path) {

@@ -67,6 +67,8 @@ Result<RenderOutput> PathTracer::render(const RenderSettings& s, const PathTrace
     }
     r.ctx.collectGarbage();
     if (s.progress) s.progress(f + 1, s.frames);
+    if (s.stop && f + 1 < s.frames)
+      if (std::optional<Error> stopped = s.stop()) return *stopped;
   }
 
   RenderOutput out;

@@ -376,6 +376,7 @@ Result<RenderOutput> Renderer::Impl::render(const RenderSettings& s) {
       return e;
     }
     if (s.progress) s.progress(f + 1, s.frames);
+    if (s.stop && f + 1 < s.frames && !run->failure) run->failure = s.stop();
   }
   return endRun();
 }

@@ -115,6 +115,9 @@ struct RenderSettings {
   std::vector<Move> moves;
   // Called after each frame with (frames done, frames in all), e.g. to show progress.
   std::function<void(uint32_t, uint32_t)> progress;
+  // Asked after each frame but the last: an error ends the run with it (a SIGTERM stops a long
+  // accumulation at the next frame: core/interrupt.h).
+  std::function<std::optional<Error>()> stop;
 };
 
 // The default AO radius as a fraction of the scene's bounding-box diagonal: large enough for contact

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "core/log.h"
+#include "rhi/fault_injection.h"
 #include "rhi/memory.h"
 #include "rhi/vk_check.h"
 
@@ -443,6 +444,17 @@ Context::~Context() {
 
 uint32_t Context::validationErrors() const { return gValidationErrors.load(); }
 
+namespace {
+std::atomic<VkResult> gInjectedSubmitFailure{VK_SUCCESS};
+// vkQueueSubmit2, or the failure rhi/fault_injection.h injected in its place.
+VkResult queueSubmit(VkQueue queue, const VkSubmitInfo2& si) {
+  const VkResult injected = gInjectedSubmitFailure.exchange(VK_SUCCESS);
+  return injected != VK_SUCCESS ? injected : vkQueueSubmit2(queue, 1, &si, VK_NULL_HANDLE);
+}
+}  // namespace
+
+void failNextSubmit(VkResult result) { gInjectedSubmitFailure = result; }
+
 uint64_t Context::submit(VkCommandBuffer cmd) { return submit(cmd, VK_NULL_HANDLE, VK_NULL_HANDLE); }
 
 uint64_t Context::submit(VkCommandBuffer cmd, VkSemaphore wait, VkSemaphore signalBinary) {
@@ -465,7 +477,7 @@ uint64_t Context::submit(VkCommandBuffer cmd, VkSemaphore wait, VkSemaphore sign
   si.pSignalSemaphoreInfos = signals;
   si.waitSemaphoreInfoCount = wait ? 1 : 0;
   si.pWaitSemaphoreInfos = &waitInfo;
-  VK_CHECK(vkQueueSubmit2(queue_, 1, &si, VK_NULL_HANDLE));
+  VK_CHECK(queueSubmit(queue_, si));
   return submitted_;
 }
 
