@@ -122,7 +122,7 @@ gpu::ProbeGrid fitProbeGrid(glm::vec3 boundsMin, glm::vec3 boundsMax, glm::vec3 
   for (uint32_t k = 0; k < g.cascades; ++k) {
     // Cascade k's lattice has 2^shift cells per coarsest cell on each axis; its window of counts
     // probes is centred on the eye, snapped to its lattice and kept inside the coarsest window.
-    uint32_t packed = 0;
+    uint32_t packed = 0, slots = 0;
     for (int a = 0; a < 3; ++a) {
       const uint32_t shift = uint32_t(std::max(0, int(levels[a]) - int(k)));  // k = 0: the finest
       const uint32_t scale = 1u << shift;
@@ -131,8 +131,9 @@ gpu::ProbeGrid fitProbeGrid(glm::vec3 boundsMin, glm::vec3 boundsMax, glm::vec3 
       const float centred = (eye[a] - g.origin[a]) / spacing - 0.5f * float(g.counts[a] - 1u);
       const int cell = std::clamp(int(std::lround(centred)), 0, last);
       packed |= uint32_t(cell) << (8 * a) | shift << (24 + 2 * a);
+      slots |= (uint32_t(cell) % g.counts[a]) << (3 * a);
     }
-    g.cascadeCells[k] = {packed, 0u};
+    g.cascadeCells[k] = {packed, slots};
   }
   g.raysPerProbe = gpu::kProbeRaysPerProbe;
   const uint32_t probes = g.counts.x * g.counts.y * g.counts.z * g.cascades;
@@ -173,8 +174,17 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
     const bool known = frames > 0 && state.cascades == grid.cascades;
     for (uint32_t k = 0; k < grid.cascades; ++k) {
       const uint32_t now = grid.cascadeCells[k].x & 0xffffffu;
-      if (known && state.windows[k] != now)
-        grid.cascadeCells[k] = {grid.cascadeCells[k].x | gpu::kProbeWindowMoved, state.windows[k]};
+      if (known && state.windows[k] != now) {
+        // How far the window moved on each axis, clamped to ±8 (a window of at most 8 probes: all
+        // of them fresh beyond that), stored + 8 in 5 bits.
+        uint32_t moved = 0;
+        for (int a = 0; a < 3; ++a) {
+          const int d = int((now >> (8 * a)) & 0xffu) - int((state.windows[k] >> (8 * a)) & 0xffu);
+          moved |= uint32_t(std::clamp(d, -8, 8) + 8) << (9 + 5 * a);
+        }
+        grid.cascadeCells[k].x |= gpu::kProbeWindowMoved;
+        grid.cascadeCells[k].y |= moved;
+      }
       state.windows[k] = now;
     }
     state.cascades = grid.cascades;
@@ -272,7 +282,7 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
   }
   update(src, dst, frames + kWarmupUpdates, "");
   grid.flags |= gpu::kProbeHistoryValid | gpu::kProbeDataValid;  // the lookup reads this frame's atlases
-  for (glm::uvec2& w : grid.cascadeCells) w = {w.x & ~gpu::kProbeWindowMoved, 0u};  // and sees no probe fresh
+  for (glm::uvec2& w : grid.cascadeCells) w = {w.x & ~gpu::kProbeWindowMoved, w.y & 0x1ffu};  // and sees no probe fresh
   lookup = {irradiance.next, visibility.next, data.next, grid};
   lookup.grid.flags |= gpu::kProbeLookup;
   const graph::ImageHandle out =

@@ -45,11 +45,13 @@ struct ProbeGrid {
   float historyScale;  // the exposure ratio (FrameConstants::exposureRatio) the previous irradiance atlas is read × by
   uint cascades;       // 1..kMaxProbeCascades; probe index = cascade × probes per cascade + slot
   // Per cascade k, where its window of counts probes lies on its lattice (in its own spacings from
-  // origin) and where it lay at the update before: .x = cell x | y << 8 | z << 16 | the lattice's
-  // log2 cells per coarsest cell on each axis (2 bits each, x first) << 24 | kProbeWindowMoved when
-  // the window moved since the update before, whose window .y then holds (cell x | y << 8 | z << 16).
-  // A probe's slot in its cascade is its lattice coordinate modulo counts (toroidal): when the
-  // window scrolls, only the probes that entered it start without history (probeFresh()).
+  // origin): .x = cell x | y << 8 | z << 16 | the lattice's log2 cells per coarsest cell on each
+  // axis (2 bits each, x first) << 24 | kProbeWindowMoved when the window moved since the update
+  // before; .y = the window's cells modulo counts (3 bits each, x first: the slot of its first
+  // probe) | when it moved, by how many cells on each axis (cell − previous cell, clamped to ±8,
+  // + 8, 5 bits each from bit 9). A probe's slot in its cascade is its lattice coordinate modulo
+  // counts (toroidal): when the window scrolls, only the probes that entered it start without
+  // history (probeFresh()).
   uvec2 cascadeCells[kMaxProbeCascades];
 };
 
