@@ -1,6 +1,9 @@
 #include "app/image_writer.h"
 
+#include <algorithm>
 #include <chrono>
+
+#include "core/parallel.h"
 
 namespace rayster::app {
 namespace {
@@ -8,7 +11,13 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
-ImageWriter::ImageWriter(unsigned threads, size_t queueFrames) : capacity_(std::max<size_t>(1, queueFrames)) {
+unsigned writerThreads() {
+  const unsigned cores = std::max(1u, std::min(std::thread::hardware_concurrency(), loadThreads()));
+  return std::clamp(cores > 1 ? cores - 1 : 1u, kWriterThreads, 8u);
+}
+
+ImageWriter::ImageWriter(unsigned threads, size_t queueFrames)
+    : capacity_(queueFrames > 0 ? queueFrames : 2 * size_t(std::max(1u, threads))) {
   for (unsigned i = 0; i < std::max(1u, threads); ++i) workers_.emplace_back([this] { work(); });
 }
 

@@ -14,18 +14,21 @@
 
 namespace rayster::app {
 
-// Two encoders keep up with a GPU that renders a frame in less time than one PNG takes, and leave
-// the render thread a core on a 2-core machine; a queue of twice as many frames absorbs uneven
-// encode times while bounding memory (a 1080p frame with its HDR image is about 40 MB).
-inline constexpr unsigned kWriterThreads = 2;
-inline constexpr size_t kWriterQueueFrames = 2 * kWriterThreads;
+// Encoders: one core left for the render thread, at least 2 and at most 8 (RAYSTER_THREADS caps
+// it, as it caps loading). A 1080p PNG takes ≈ 0.6 s to encode on an H200 host's core, against
+// ≈ 4–70 ms to render: with 2 encoders a 1080p sequence ran at 3.3 frames/s there, bound by them.
+// The queue holds twice as many frames, absorbing uneven encode times while bounding memory (a 1080p
+// frame with its HDR image is about 40 MB).
+unsigned writerThreads();
+inline constexpr unsigned kWriterThreads = 2;  // the fewest
 
 class ImageWriter {
  public:
   // One frame's writes, in order; it owns the images it writes.
   using Job = std::function<Status()>;
 
-  explicit ImageWriter(unsigned threads = kWriterThreads, size_t queueFrames = kWriterQueueFrames);
+  // queueFrames 0: twice the threads.
+  explicit ImageWriter(unsigned threads = writerThreads(), size_t queueFrames = 0);
   ~ImageWriter();  // finish()
   ImageWriter(const ImageWriter&) = delete;
   ImageWriter& operator=(const ImageWriter&) = delete;

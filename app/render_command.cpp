@@ -253,7 +253,7 @@ Status renderRange(const rhi::Context& ctx, render::Renderer& renderer, const Re
       "{:.2f} s on {} worker threads, the render thread waited {:.2f} s for them)",
       seq->written, range.count(), o.output, seq->skipped, settings.width, settings.height, settings.frames,
       seq->wallSeconds, seq->wallSeconds > 0 ? double(seq->written) / seq->wallSeconds : 0.0, seq->encodeSeconds,
-      kWriterThreads, seq->waitSeconds);
+      writerThreads(), seq->waitSeconds);
   return okStatus();
 }
 
