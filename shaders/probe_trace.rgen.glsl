@@ -13,6 +13,8 @@
 #include "lib/hit_surface.glsl"
 #include "lib/brdf.glsl"
 #include "lib/environment.glsl"
+#include "lib/specular_weight.glsl"
+#include "lib/specular_scatter.glsl"
 #include "shared/probes.h"
 
 // Probe rays (gi-probe-trace, docs/techniques.md §16b): launch (raysPerProbe, probes). Ray r of
@@ -51,44 +53,67 @@ float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
 
 const uint kProbeStream = 0x9e3779b9u;
 
+// Mirror, metal and glass hits the probe rays follow (docs/techniques.md §16b): at most this many
+// specular events, then the next hit is shaded (or the ray ends in the environment).
+const uint kProbeSpecularEvents = 3u;
+
 void main() {
   uint r = gl_LaunchIDEXT.x, probe = gl_LaunchIDEXT.y;
   // A probe that just entered its cascade's window has no offset yet (its data is another point's).
   vec3 origin = probeWorldPosition(grid, probe) + (probeFresh(grid, probe) ? vec3(0.0) : probeData(grid, probe).xyz);
   vec3 dir = probeRayDirection(grid, r);
   uint rng = rngInit(uvec2(r, probe), frame.frameIndex, frame.seed ^ kProbeStream);
-  payload.t = -1.0;
-  // Casters only, as the indirect rays: a light's visible shape is direct light, counted already.
-  traceRayEXT(tlas, sceneRayFlags(), kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, grid.maxDistance, 0);
-  vec4 result;
-  vec3 bounce = vec3(0.0);
-  if (payload.t < 0.0) {
-    result = vec4(environmentRadiance(dir), grid.maxDistance);
-  } else {
+  // The first segment's hit decides the distance (the visibility moments, the classifier); the
+  // radiance follows specular surfaces: a diffuse wall beside a mirror or under glass sees the light
+  // they send it, and after a specular event a light's visible shape too (a caustic seen from the
+  // probe: no direct-light estimate carries that path).
+  vec3 radiance = vec3(0.0), bounce = vec3(0.0), beta = vec3(1.0);
+  float distance = grid.maxDistance;
+  bool backFace = false;
+  for (uint event = 0u; event <= kProbeSpecularEvents; ++event) {
+    payload.t = -1.0;
+    // Casters only at first, as the indirect rays: a light's visible shape is direct light, counted already.
+    uint mask = event == 0u ? kMaskCastsShadow : kMaskVisible | kMaskCastsShadow;
+    traceRayEXT(tlas, sceneRayFlags(), mask, 0, 0, 0, origin, 0.0, dir, grid.maxDistance, 0);
+    if (payload.t < 0.0) {
+      radiance += beta * environmentRadiance(dir);
+      break;
+    }
     SurfacePoint sp;
     MaterialRecord m;
     surfaceAtHit(payload, origin, dir, sp, m);
     // The back of a face (by its winding): the probe may be inside geometry, which the classifier
     // reads from a negative distance. A single-sided surface sends no light back; a double-sided
     // one is shaded as usual (a thin wall or leaf seen from behind).
-    bool backFace = dot(sp.geometricNormal, dir) > 0.0;
-    if (backFace && (m.flags & kMaterialDoubleSided) == 0u) {
-      result = vec4(0.0, 0.0, 0.0, -0.2 * payload.t);
-    } else {
-      GBufferValues gb = evaluateSurface(m, sp, origin);  // normals face the probe
-      vec3 hn = octDecode(gb.normals.xy), hng = octDecode(gb.normals.zw);
-      SurfaceBsdf bsdf = makeBsdf(srgbToLinear(gb.albedo.rgb), gb.material.g, gb.material.r, gb.specular, m.ior);
-      bsdf.diffuse *= 1.0 - gb.material.b;
-      vec3 radiance = gb.emissive.rgb + directFromOneLight(bsdf, sp.position, hn, hng, -dir, rng);
-      if ((grid.flags & kProbeHistoryValid) != 0u)
-        bounce = bsdf.diffuse / kPi * probeIrradiance(grid, sp.position, hn, -dir) * gb.albedo.a * grid.historyScale;
-      // A firefly clamp on the whole (bright but finite, its hue kept), the bounce share scaled with it.
-      vec3 total = max(radiance, vec3(0.0)) + max(bounce, vec3(0.0));
-      float scale = 256.0 / max(256.0, max(total.r, max(total.g, total.b)));
-      bounce = max(bounce, vec3(0.0)) * scale;
-      result = vec4(total * scale, backFace ? -0.2 * payload.t : payload.t);
+    bool back = dot(sp.geometricNormal, dir) > 0.0;
+    if (event == 0u) {
+      distance = payload.t;
+      backFace = back;
     }
+    if (back && (m.flags & kMaterialDoubleSided) == 0u && m.transmission <= 0.0) break;
+    GBufferValues gb = evaluateSurface(m, sp, origin);  // normals face the ray
+    vec3 hn = octDecode(gb.normals.xy), hng = octDecode(gb.normals.zw);
+    float roughness = gb.material.r, transmission = gb.material.b;
+    SurfaceBsdf bsdf = makeBsdf(srgbToLinear(gb.albedo.rgb), gb.material.g, roughness, gb.specular, m.ior);
+    bsdf.diffuse *= 1.0 - transmission;
+    bool goesOn = roughness <= kMirrorRoughness && transmission <= 0.0 && event < kProbeSpecularEvents;
+    radiance += beta * (gb.emissive.rgb + directFromOneLight(bsdf, sp.position, hn, hng, -dir, goesOn, rng));
+    if ((grid.flags & kProbeHistoryValid) != 0u)
+      bounce += beta * bsdf.diffuse / kPi * probeIrradiance(grid, sp.position, hn, -dir) * gb.albedo.a *
+                grid.historyScale;
+    if (!goesOn) break;
+    bool entering = dot(dir, sp.geometricNormal) < 0.0;
+    bool thin = m.thickness <= 0.0;
+    if (!entering && !thin) beta *= volumeTransmittance(m, payload.t);
+    scatter(dir, origin, beta, sp.position, hn, hng, entering, srgbToLinear(gb.albedo.rgb), gb.material.g,
+            transmission, m.ior, thin, gb.specular, rng);
+    if (max(beta.r, max(beta.g, beta.b)) < 1e-3) break;
   }
+  // A firefly clamp on the whole (bright but finite, its hue kept), the bounce share scaled with it.
+  vec3 total = max(radiance, vec3(0.0)) + max(bounce, vec3(0.0));
+  float scale = 256.0 / max(256.0, max(total.r, max(total.g, total.b)));
+  bounce = max(bounce, vec3(0.0)) * scale;
+  vec4 result = vec4(total * scale, backFace ? -0.2 * distance : distance);
   imageStore(outRays, ivec2(r, probe), result);
   imageStore(outBounceRays, ivec2(r, probe), vec4(bounce, 0.0));
 }

@@ -5,7 +5,9 @@
 #ifndef RAYSTER_ONE_LIGHT_GLSL
 #define RAYSTER_ONE_LIGHT_GLSL
 
-vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, inout uint rng) {
+// `tracedHit`: the ray goes on through this specular surface (a probe ray's specular chain) and
+// sees the lights' visible shapes there, so only a sun (which has none) keeps its specular lobe.
+vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, bool tracedHit, inout uint rng) {
   float invPdf;
   uint chosen = selectLight(p, n, rng, invPdf);
   if (chosen >= frame.lightCount) return vec3(0.0);
@@ -15,7 +17,12 @@ vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, inout
   vec3 incident = lightIncident(light, p, l, dist);
   if (lightVisibility(chosen, p, ng, rng) == 0.0) return vec3(0.0);
   float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
+  if (tracedHit && light.type != kLightDirectional) bsdf.f0 = bsdf.f90 = vec3(0.0);
   return evalBsdfCos(bsdf, n, v, l, 0.5 * widen) * incident * invPdf;
+}
+
+vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, inout uint rng) {
+  return directFromOneLight(bsdf, p, n, ng, v, false, rng);
 }
 
 #endif
