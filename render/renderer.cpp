@@ -70,6 +70,16 @@ const char* primaryName(Primary p) {
   }
 }
 
+void Renderer::Impl::logMeteredExposure(const std::string& how) {
+  const float ev = exposure.ev100();
+  if (std::abs(ev - loggedEv100) < 0.005f) {
+    log::debug("exposure: auto, EV100 {:.2f} ({})", ev, how);
+    return;
+  }
+  loggedEv100 = ev;
+  log::info("exposure: auto, EV100 {:.2f} ({})", ev, how);
+}
+
 Renderer::Impl::Impl(rhi::Context& c, const scene::Scene& s, GpuScene g)
     : ctx(c),
       scene(s),
@@ -273,7 +283,7 @@ Result<RenderOutput> Renderer::Impl::renderPathTraced(const RenderSettings& s) {
     run.reset();
     if (exposure.automatic()) {
       exposure.beginFrame(true);
-      log::info("exposure: auto, EV100 {:.2f} (metered by the hybrid)", exposure.ev100());
+      logMeteredExposure("metered by the hybrid");
     }
   }
   // Emitters that are animated or deform light from that pose too.
@@ -364,7 +374,7 @@ Result<RenderOutput> Renderer::Impl::render(const RenderSettings& s) {
       ++k;
       if (run->failure || run->meterDistance <= kMeterSettled) break;
     }
-    log::info("exposure: auto, EV100 {:.2f} (metered in {} frame{})", exposure.ev100(), k, k == 1 ? "" : "s");
+    logMeteredExposure(fmt::format("metered in {} frame{}", k, k == 1 ? "" : "s"));
     gpu.cull->visibilityFresh = true;  // the first output frame culls as if nothing came before
   }
   for (uint32_t f = 0; f < s.frames || run->failure; ++f) {

@@ -80,6 +80,10 @@ struct Renderer::Impl {
   // The exposure of each frame (render/exposure.h), and auto exposure's histogram: GPU-side, and
   // its host-visible copy, read after the frame's fence.
   ExposureControl exposure;
+  // The EV100 the last "exposure: auto" line gave: a sequence's output frames, each metered afresh,
+  // log it again only when it changes (else one line per frame floods a job's log).
+  float loggedEv100 = -1e9f;
+  void logMeteredExposure(const std::string& how);
   rhi::Buffer exposureHistogram, exposureReadback;
   graph::ResourceState exposureHistogramState, exposureReadbackState;
   std::unique_ptr<PathTracer> pathTracer;  // created by the first path-traced render

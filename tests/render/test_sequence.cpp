@@ -75,6 +75,20 @@ TEST(Sequence, AChunkEqualsTheSameFramesOfTheWholeRange) {
   EXPECT_FALSE(anyTemporaryFile(dir));
 }
 
+// Every output frame is metered afresh; the "exposure: auto" line comes again only when the
+// exposure changed, not once per frame (a 10000-frame job's log).
+TEST(Sequence, AnUnchangedExposureIsLoggedOnce) {
+  const fs::path dir = testDir();
+  RunResult r = runRayster("render builtin:cornell --size 32x24 --frames 1 --indirect off --frames-out 0:3 -o " +
+                           (dir / "f_#.png").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  size_t lines = 0;
+  for (size_t at = r.output.find("exposure: auto"); at != std::string::npos;
+       at = r.output.find("exposure: auto", at + 1))
+    ++lines;
+  EXPECT_EQ(lines, 1u) << r.output;
+}
+
 TEST(Sequence, SkipExistingRendersOnlyTheMissingFramesAndTheSamePixels) {
   const fs::path dir = testDir();
   const fs::path scene = writeAnimatedGltf(dir), out = dir / "out";
