@@ -26,6 +26,14 @@ struct RunResult {
 
 // `prefix` runs the command (e.g. under xvfb-run); stdout and stderr are one pipe. The binary
 // inherits the test process's RAYSTER_CACHE_DIR (tests/support/test_dirs.h).
+// Mean Rec. 709 luminance of an HDR image (linear values).
+inline double meanLuminance(const ImageF& img) {
+  double sum = 0;
+  for (size_t i = 0; i + 3 < img.rgba.size(); i += 4)
+    sum += 0.2126 * img.rgba[i] + 0.7152 * img.rgba[i + 1] + 0.0722 * img.rgba[i + 2];
+  return img.rgba.empty() ? 0.0 : sum / double(img.rgba.size() / 4);
+}
+
 inline RunResult runRaysterWith(const std::string& prefix, const std::string& args, const std::string& env) {
   std::string cmd = prefix + "env XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} RAYSTER_VALIDATION=1 " + env + " " +
                     std::string(RAYSTER_BINARY) + " " + args + " 2>&1";

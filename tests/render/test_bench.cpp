@@ -18,13 +18,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string readText(const std::filesystem::path& p) {
-  std::ifstream f(p);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
 void expectFiniteNumber(const json& j, const std::string& key, const std::string& where) {
   ASSERT_TRUE(j.contains(key)) << where << ": missing " << key;
   ASSERT_TRUE(j[key].is_number()) << where << ": " << key << " is not a number";

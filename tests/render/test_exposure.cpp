@@ -31,13 +31,6 @@ double meanLdr(const Image8& img) {
   return sum / (double(img.rgba.size()) * 0.75);
 }
 
-double meanLuminance(const ImageF& img) {
-  double sum = 0;
-  for (size_t i = 0; i + 3 < img.rgba.size(); i += 4)
-    sum += 0.2126 * img.rgba[i] + 0.7152 * img.rgba[i + 1] + 0.0722 * img.rgba[i + 2];
-  return sum / double(img.rgba.size() / 4);
-}
-
 // The fraction of pixels with a channel at 250 or more.
 double saturated(const Image8& img) {
   size_t n = 0;

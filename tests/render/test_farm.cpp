@@ -20,13 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readText(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
 void writeExecutable(const fs::path& p, const std::string& text) {
   std::ofstream(p) << text;
   fs::permissions(p, fs::perms::owner_all);

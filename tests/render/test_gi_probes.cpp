@@ -17,13 +17,6 @@
 namespace rayster::test {
 namespace {
 
-double meanLuminance(const ImageF& img) {
-  double sum = 0;
-  for (size_t i = 0; i < img.rgba.size(); i += 4)
-    sum += 0.2126 * img.rgba[i] + 0.7152 * img.rgba[i + 1] + 0.0722 * img.rgba[i + 2];
-  return sum / double(img.rgba.size() / 4);
-}
-
 class GiProbes : public ::testing::Test {
  protected:
   void SetUp() override { dir_ = testDir(); }

@@ -63,13 +63,6 @@ ImageF renderHdr(const std::filesystem::path& dir, const std::string& name, cons
   return std::move(img).value();
 }
 
-double meanLuminance(const ImageF& img) {
-  double sum = 0;
-  for (size_t i = 0; i < img.rgba.size(); i += 4)
-    sum += 0.2126 * img.rgba[i] + 0.7152 * img.rgba[i + 1] + 0.0722 * img.rgba[i + 2];
-  return sum / (img.rgba.size() / 4);
-}
-
 const std::vector<TestLight> kEight = {{"point", -2, 3, 1, 12, 0.3f},     {"point", 2, 2.5f, -1, 6, 0.1f},
                                        {"point", 0, 4, -2, 20, 0.0f},     {"spot", 1, 3, 2, 30, 0},
                                        {"point", -1, 1.5f, -2, 2, 0.2f},  {"point", 3, 1, 2, 4, 0.4f},

@@ -82,13 +82,6 @@ TEST(ProbeCascades, LargeScenesNestFinerWindowsAroundTheCamera) {
   EXPECT_EQ(fitProbeGrid({0, 0, 0}, {1, 1, 1}, eye, 1).cascades, 1u);
 }
 
-double meanLuminance(const ImageF& img) {
-  double sum = 0;
-  for (size_t i = 0; i < img.rgba.size(); i += 4)
-    sum += 0.2126 * img.rgba[i] + 0.7152 * img.rgba[i + 1] + 0.0722 * img.rgba[i + 2];
-  return sum / double(img.rgba.size() / 4);
-}
-
 class ProbeCascadesRender : public ::testing::Test {
  protected:
   // A large scene (a 96 m floor under a strong sun and a sky) with a closed 4 × 3 × 4 m room in its

@@ -139,11 +139,6 @@ int waitForExit(pid_t pid, double seconds) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
 TEST(SequenceFault, SigtermWritesTheFramesRenderedDropsTheOneInFlightAndExits143) {
   const fs::path dir = testDir();
   const fs::path scene = writeAnimatedGltf(dir), out = dir / "out", log = dir / "log.txt";

@@ -7,6 +7,8 @@
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <mutex>
 #include <random>
@@ -124,6 +126,11 @@ fs::path uniqueTestDir(const std::string& tag) {
   static std::atomic<int> counter{0};
   const std::string name = currentTestName();
   return makeFresh(processDir() / fmt::format("{}-{}-{}", name.empty() ? "shared" : name, tag, counter++));
+}
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 }  // namespace rayster::test

@@ -24,4 +24,7 @@ std::filesystem::path testDir();
 // need several; cleaned up (or kept) like testDir().
 std::filesystem::path uniqueTestDir(const std::string& tag);
 
+// The whole file as text ("" when it cannot be read): logs, scripts, JSON a test checks.
+std::string readText(const std::filesystem::path& path);
+
 }  // namespace rayster::test

@@ -15,13 +15,7 @@
 namespace rayster::app {
 namespace {
 namespace fs = std::filesystem;
-
-std::string readText(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::readText;
 
 TEST(ViewerShaderReload, ErrorKeepsOldModuleAndValidChangeReplacesIt) {
   const fs::path src = fs::path(RAYSTER_SHADER_DIR);

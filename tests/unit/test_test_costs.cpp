@@ -11,7 +11,11 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/test_dirs.h"
+
 namespace {
+
+using rayster::test::readText;
 
 // "Suite.Test" of every test of this binary, and every suite name. A parameterised test is
 // "Prefix/Suite.Test/N"; ctest names it with the parameter's printed value instead of N, so it is
@@ -35,13 +39,6 @@ Registered registeredTests() {
     }
   }
   return r;
-}
-
-std::string readText(const std::filesystem::path& path) {
-  std::ifstream f(path);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
 }
 
 TEST(TestCosts, EveryListedTestExists) {
