@@ -21,7 +21,8 @@
 // probe i leaves the probe in a rotated spherical-Fibonacci direction; a hit is shaded with its
 // emission, direct light from one light picked by importance (shadow ray) and, once the atlases
 // hold light, the probes' own irradiance at the hit (one more bounce every frame: multiple
-// bounces). A miss sees the environment. A hit on the back of a face records a negative distance
+// bounces); a mirror reflects the ray on (up to kProbeSpecularEvents times). A miss sees the
+// environment. A hit on the back of a face records a negative distance
 // (−0.2 t), which the classifier reads (the probe may be inside geometry); on a single-sided
 // surface it also records no light.
 // Output (RGBA16F, texel (r, i)): outRays rgb the radiance (pre-exposed), a the hit distance;
@@ -53,8 +54,9 @@ float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
 
 const uint kProbeStream = 0x9e3779b9u;
 
-// Mirror, metal and glass hits the probe rays follow (docs/techniques.md §16b): at most this many
-// specular events, then the next hit is shaded (or the ray ends in the environment).
+// Mirror hits (opaque, at most kMirrorRoughness rough) the probe rays reflect off (docs/techniques.md
+// §16b): at most this many, then the next hit is shaded (or the ray ends in the environment). Glass
+// ends the ray: followed, it spread the light it focuses over the probes' cells.
 const uint kProbeSpecularEvents = 3u;
 
 void main() {
@@ -64,9 +66,9 @@ void main() {
   vec3 dir = probeRayDirection(grid, r);
   uint rng = rngInit(uvec2(r, probe), frame.frameIndex, frame.seed ^ kProbeStream);
   // The first segment's hit decides the distance (the visibility moments, the classifier); the
-  // radiance follows specular surfaces: a diffuse wall beside a mirror or under glass sees the light
-  // they send it, and after a specular event a light's visible shape too (a caustic seen from the
-  // probe: no direct-light estimate carries that path).
+  // radiance follows mirrors: a diffuse wall beside one sees the light it sends, and after a
+  // reflection a light's visible shape too (light → mirror → probe: no direct-light estimate
+  // carries that path).
   vec3 radiance = vec3(0.0), bounce = vec3(0.0), beta = vec3(1.0);
   float distance = grid.maxDistance;
   bool backFace = false;
@@ -90,7 +92,7 @@ void main() {
       distance = payload.t;
       backFace = back;
     }
-    if (back && (m.flags & kMaterialDoubleSided) == 0u && m.transmission <= 0.0) break;
+    if (back && (m.flags & kMaterialDoubleSided) == 0u) break;
     GBufferValues gb = evaluateSurface(m, sp, origin);  // normals face the ray
     vec3 hn = octDecode(gb.normals.xy), hng = octDecode(gb.normals.zw);
     float roughness = gb.material.r, transmission = gb.material.b;
@@ -102,11 +104,8 @@ void main() {
       bounce += beta * bsdf.diffuse / kPi * probeIrradiance(grid, sp.position, hn, -dir) * gb.albedo.a *
                 grid.historyScale;
     if (!goesOn) break;
-    bool entering = dot(dir, sp.geometricNormal) < 0.0;
-    bool thin = m.thickness <= 0.0;
-    if (!entering && !thin) beta *= volumeTransmittance(m, payload.t);
-    scatter(dir, origin, beta, sp.position, hn, hng, entering, srgbToLinear(gb.albedo.rgb), gb.material.g,
-            transmission, m.ior, thin, gb.specular, rng);
+    scatter(dir, origin, beta, sp.position, hn, hng, true, srgbToLinear(gb.albedo.rgb), gb.material.g, 0.0, m.ior,
+            true, gb.specular, rng);  // an opaque mirror: the Fresnel-weighted reflection
     if (max(beta.r, max(beta.g, beta.b)) < 1e-3) break;
   }
   // A firefly clamp on the whole (bright but finite, its hue kept), the bounce share scaled with it.

@@ -1,12 +1,14 @@
 // Dynamic diffuse GI from irradiance probes (DDGI; --gi probes, docs/techniques.md §16b): a probe
 // grid fitted to the scene's bounds, and in a large scene finer cascades of it around the camera
-// (fitProbeGrid; their windows scroll with it, only the probes that enter one start afresh); each frame every probe
-// traces kProbeRaysPerProbe rays in a randomly rotated spherical-Fibonacci set (gi-probe-trace), the rays relocate
-// probes out of geometry and classify them active or not (gi-probe-classify), update each probe's octahedral irradiance
-// and distance-moment tiles with hysteresis (gi-probe-update-irradiance, gi-probe-update-visibility; the atlases are
-// graph histories), and every G-buffer pixel looks up its irradiance from the eight probes around it with Chebyshev
-// visibility (gi-probe-sample). Probe rays shade their hits with the probes of the frame before, so light bounces once
-// more every frame. The result takes the one-bounce path's place as the diffuse indirect light.
+// (fitProbeGrid; their windows scroll with it, only the probes that enter one start afresh). Each
+// frame every probe traces kProbeRaysPerProbe rays in a randomly rotated spherical-Fibonacci set
+// (gi-probe-trace), the rays relocate probes out of geometry and classify them active or not
+// (gi-probe-classify), update each probe's octahedral irradiance and distance-moment tiles with
+// hysteresis (gi-probe-update-irradiance, gi-probe-update-visibility; the atlases are graph
+// histories), and every G-buffer pixel looks up its irradiance from the eight probes around it
+// with Chebyshev visibility (gi-probe-sample). Probe rays shade their hits with the probes of the
+// frame before, so light bounces once more every frame. The result takes the one-bounce path's
+// place as the diffuse indirect light.
 #include <algorithm>
 #include <cmath>
 
@@ -27,8 +29,8 @@ const PassSetting kGi{
 
 const PassSetting kCascades{
     passChoice("probe-cascades", "Effects",
-               "Probe cascades: auto (as many as bring the finest probe spacing near 1 m, the finer ones following the "
-               "camera) or 1..4",
+               "Probe cascades: auto (in a scene larger than about 17 m, as many as bring the finest probe "
+               "spacing to 2.5 m, the finer ones following the camera) or 1..4",
                {"auto", "1", "2", "3", "4"}, "auto")};
 
 constexpr uint32_t kMaxProbesPerAxis = 8;  // per cascade, on the scene's longest axis
@@ -69,6 +71,8 @@ glm::vec4 frameRotation(uint32_t frame, uint32_t seed) {
 
 }  // namespace
 
+uint32_t probeCount(const gpu::ProbeGrid& g) { return g.counts.x * g.counts.y * g.counts.z * g.cascades; }
+
 uint32_t probeCascadesSetting(const RenderSettings& settings) {
   const std::string v = passSettingText(settings, "probe-cascades");
   return v == "auto" ? 0u : uint32_t(std::stoul(v));
@@ -106,7 +110,7 @@ gpu::ProbeGrid fitProbeGrid(glm::vec3 boundsMin, glm::vec3 boundsMax, glm::vec3 
     return levels;
   };
   glm::uvec3 levels = levelsFor(g.spacing);
-  uint32_t deepest = std::max(levels.x, std::max(levels.y, levels.z));
+  const uint32_t deepest = std::max(levels.x, std::max(levels.y, levels.z));
   g.cascades = cascades == 0 ? 1u + deepest : std::clamp(cascades, 1u, gpu::kMaxProbeCascades);
   if (g.cascades > 1) {
     // A finer window of 2 probes on an axis would cover one cell of it: a large flat scene's height.
@@ -136,8 +140,7 @@ gpu::ProbeGrid fitProbeGrid(glm::vec3 boundsMin, glm::vec3 boundsMax, glm::vec3 
     g.cascadeCells[k] = {packed, slots};
   }
   g.raysPerProbe = gpu::kProbeRaysPerProbe;
-  const uint32_t probes = g.counts.x * g.counts.y * g.counts.z * g.cascades;
-  g.tilesPerRow = uint32_t(std::ceil(std::sqrt(float(probes))));
+  g.tilesPerRow = uint32_t(std::ceil(std::sqrt(float(probeCount(g)))));
   g.normalBias = 0.05f;
   g.viewBias = 0.2f;
   g.maxDistance = 2.0f * glm::length(extent);
@@ -147,7 +150,7 @@ gpu::ProbeGrid fitProbeGrid(glm::vec3 boundsMin, glm::vec3 boundsMax, glm::vec3 
 namespace {
 
 rhi::ImageDesc atlasDesc(const gpu::ProbeGrid& g, uint32_t interior, VkFormat format) {
-  const uint32_t probes = g.counts.x * g.counts.y * g.counts.z * g.cascades;
+  const uint32_t probes = probeCount(g);
   const uint32_t rows = (probes + g.tilesPerRow - 1) / g.tilesPerRow;
   return {format, g.tilesPerRow * (interior + 2), rows * (interior + 2), 1, kUsage};
 }
@@ -157,7 +160,7 @@ rhi::ImageDesc atlasDesc(const gpu::ProbeGrid& g, uint32_t interior, VkFormat fo
 graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                         const ProbeFrame& frame, ProbeLookup& lookup) {
   gpu::ProbeGrid grid = fitProbeGrid(in.scene.bounds.min, in.scene.bounds.max, frame.eye, frame.cascades);
-  const uint32_t probes = grid.counts.x * grid.counts.y * grid.counts.z * grid.cascades;
+  const uint32_t probes = probeCount(grid);
   const auto irradiance =
       graph.history("gi-probe-irradiance", atlasDesc(grid, gpu::kProbeIrradianceTexels, VK_FORMAT_R16G16B16A16_SFLOAT),
                     kRadianceImage);

@@ -116,6 +116,8 @@ struct ProbeFrame {
   uint32_t cascades = 0;               // --probe-cascades: 1..4, 0 auto (probeCascadesSetting())
   ProbeCascadeState* state = nullptr;  // the renderer's, updated by traceProbeIrradiance()
 };
+// Probes in the grid's atlases: per cascade × cascades.
+uint32_t probeCount(const gpu::ProbeGrid& grid);
 // --probe-cascades of the settings: 0 for auto, else the number asked for.
 uint32_t probeCascadesSetting(const RenderSettings& settings);
 // The probe grid fitted to the scene's bounds with `cascades` cascades (0: as many as bring the
