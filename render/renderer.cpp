@@ -163,7 +163,7 @@ glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::C
   fc.effectFlags =
       gpu::kEffectPrefilteredEnv |
       (s.mode == Mode::Raster ? 0u : (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u)) |
-      (indirectQuarter(s) ? gpu::kEffectIndirectQuarter : 0u) |
+      (indirectQuarter(s) ? gpu::kEffectIndirectQuarter : 0u) | (aoHalfRate(s) ? gpu::kEffectAoHalf : 0u) |
       (s.mode != Mode::Raster && indirectOn(s) && passSettingText(s, "gi") == "probes" ? gpu::kEffectIndirectSpecular
                                                                                        : 0u);
   fc.dfgSlot = gpu.dfgSlot;

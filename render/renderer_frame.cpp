@@ -231,9 +231,9 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   // its own. Many-light mode shadows no layer: its direct light is a pass of its own.
   if (lights > 0) {
     o.shadowRaw = traceShadows(graph, in, gb, lights, ao ? 1u : 0u);
-    if (ao) o.aoRaw = traceAo(graph, in, gb, o.shadowRaw);
+    if (ao) o.aoRaw = traceAo(graph, in, gb, o.shadowRaw, aoHalfRate(s));
   } else if (ao) {
-    o.aoRaw = traceAo(graph, in, gb);
+    o.aoRaw = traceAo(graph, in, gb, {}, aoHalfRate(s));
   }
   o.aoLayer = ao ? lights : 0u;
   o.shadow = o.shadowRaw;
@@ -268,7 +268,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     traceRawPrimary(graph, in);
     traceRawShadows(graph, in, gb, lights);
     o.rawTwins = traceRawTwins(graph, in, gb, {ao, manyLights, indirect && !probes, specularPass}, indirectQuarter(s),
-                               lightsPerHit());
+                               aoHalfRate(s), lightsPerHit());
   }
   // Probes first: the reflection bounce loop lights its hits from them too.
   // With --gi path they run too: the one-bounce rays' hits take their irradiance (every later
@@ -282,7 +282,9 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     if (probes) o.indirectRaw = o.indirect = e;
   }
   if (specularPass) {
-    o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit(), probeLookup);
+    specularQueue.ctx = &ctx;
+    o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit(), probeLookup,
+                                  useSpecularQueue(ctx, s, in.size) ? &specularQueue : nullptr);
     o.specular = svgf("specular", o.specularRaw);
   }
   const graph::ImageHandle direct = manyLights ? svgf("direct", traceDirect(graph, in, gb)) : black;

@@ -75,6 +75,7 @@ struct Renderer::Impl {
   RasterFrame raster;               // the raster mode's passes (render/raster_frame.h)
   uint32_t frameIndex = 0;
   ProbeCascadeState probeCascades;  // where the probe cascades' windows were (render/passes/gi_probes.cpp)
+  SpecularQueue specularQueue;      // the specular paths' continuation queue (render/passes/rt_specular.cpp)
   InstanceMotion motion;            // animation and edits (render/instance_motion.h)
   bool manyLights = false;          // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
   // The exposure of each frame (render/exposure.h), and auto exposure's histogram: GPU-side, and

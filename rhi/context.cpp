@@ -93,6 +93,14 @@ DeviceInfo describe(VkPhysicalDevice pd) {
                             hasExtension(exts, VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME);
   c.rayTracingPipeline = hasExtension(exts, VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME);
   c.rayQuery = hasExtension(exts, VK_KHR_RAY_QUERY_EXTENSION_NAME);
+  if (c.rayTracingPipeline) {
+    VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtFeatures{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    features.pNext = &rtFeatures;
+    vkGetPhysicalDeviceFeatures2(pd, &features);
+    c.traceRaysIndirect = rtFeatures.rayTracingPipelineTraceRaysIndirect == VK_TRUE;
+  }
   c.shaderGroupHandleSize = rtProps.shaderGroupHandleSize;
   c.shaderGroupHandleAlignment = rtProps.shaderGroupHandleAlignment;
   c.shaderGroupBaseAlignment = rtProps.shaderGroupBaseAlignment;
@@ -104,6 +112,7 @@ DeviceInfo describe(VkPhysicalDevice pd) {
     c.accelerationStructure = false;
     c.rayTracingPipeline = false;
     c.rayQuery = false;
+    c.traceRaysIndirect = false;
   }
 
   if (VK_API_VERSION_MINOR(info.apiVersion) < 3 && VK_API_VERSION_MAJOR(info.apiVersion) == 1)
@@ -351,6 +360,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
   VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtFeatures{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
   rtFeatures.rayTracingPipeline = VK_TRUE;
+  rtFeatures.rayTracingPipelineTraceRaysIndirect = ctx->info_.caps.traceRaysIndirect ? VK_TRUE : VK_FALSE;
   VkPhysicalDeviceAccelerationStructureFeaturesKHR asFeatures{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
   asFeatures.accelerationStructure = VK_TRUE;

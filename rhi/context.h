@@ -24,6 +24,9 @@ struct Capabilities {
   bool rayTracingPipeline = false;
   bool accelerationStructure = false;
   bool rayQuery = false;
+  // vkCmdTraceRaysIndirectKHR (rayTracingPipelineTraceRaysIndirect): launches sized on the GPU, as
+  // the specular path's compacted continuation (render/passes/rt_specular.cpp).
+  bool traceRaysIndirect = false;
   bool timestamps = false;
   uint32_t shaderGroupHandleSize = 0;
   uint32_t shaderGroupHandleAlignment = 0;

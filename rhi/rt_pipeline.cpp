@@ -105,16 +105,25 @@ RayTracingPipeline::RayTracingPipeline(Context& ctx, const RayTracingPipelineDes
   sbtBase_ = base;
 }
 
-void RayTracingPipeline::trace(VkCommandBuffer cmd, uint32_t width, uint32_t height, uint32_t depth) const {
+RayTracingPipeline::Regions RayTracingPipeline::regions() const {
   const SbtLayout& l = sbtLayout_;
-  VkStridedDeviceAddressRegionKHR raygen{sbtBase_ + l.raygenOffset, l.raygenSize, l.raygenSize};
-  VkStridedDeviceAddressRegionKHR miss{sbtBase_ + l.missOffset, l.stride, l.missSize};
-  VkStridedDeviceAddressRegionKHR hit{sbtBase_ + l.hitOffset, l.stride, l.hitSize};
-  VkStridedDeviceAddressRegionKHR callable{};
-  if (l.missSize == 0) miss = {};
-  if (l.hitSize == 0) hit = {};
+  Regions r;
+  r.raygen = {sbtBase_ + l.raygenOffset, l.raygenSize, l.raygenSize};
+  if (l.missSize != 0) r.miss = {sbtBase_ + l.missOffset, l.stride, l.missSize};
+  if (l.hitSize != 0) r.hit = {sbtBase_ + l.hitOffset, l.stride, l.hitSize};
+  return r;
+}
+
+void RayTracingPipeline::trace(VkCommandBuffer cmd, uint32_t width, uint32_t height, uint32_t depth) const {
+  const Regions r = regions();
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_);
-  vkCmdTraceRaysKHR(cmd, &raygen, &miss, &hit, &callable, width, height, depth);
+  vkCmdTraceRaysKHR(cmd, &r.raygen, &r.miss, &r.hit, &r.callable, width, height, depth);
+}
+
+void RayTracingPipeline::traceIndirect(VkCommandBuffer cmd, VkDeviceAddress command) const {
+  const Regions r = regions();
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_);
+  vkCmdTraceRaysIndirectKHR(cmd, &r.raygen, &r.miss, &r.hit, &r.callable, command);
 }
 
 }  // namespace rayster::rhi

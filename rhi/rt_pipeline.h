@@ -41,9 +41,16 @@ class RayTracingPipeline : public Pipeline {
   RayTracingPipeline() = default;
   RayTracingPipeline(Context& ctx, const RayTracingPipelineDesc& desc);
   void trace(VkCommandBuffer cmd, uint32_t width, uint32_t height, uint32_t depth = 1) const;
+  // The launch size read by the GPU from a VkTraceRaysIndirectCommandKHR at `command` (a buffer
+  // with VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT); needs Capabilities::traceRaysIndirect.
+  void traceIndirect(VkCommandBuffer cmd, VkDeviceAddress command) const;
   const SbtLayout& sbtLayout() const { return sbtLayout_; }
 
  private:
+  struct Regions {
+    VkStridedDeviceAddressRegionKHR raygen{}, miss{}, hit{}, callable{};
+  };
+  Regions regions() const;
   Buffer sbt_;
   VkDeviceAddress sbtBase_ = 0;
   SbtLayout sbtLayout_;

@@ -100,7 +100,8 @@ void main() {
     bsdf.diffuse *= 1.0 - transmission;
     bool goesOn = roughness <= kMirrorRoughness && transmission <= 0.0 && event < kProbeSpecularEvents;
     radiance += beta * (gb.emissive.rgb + directFromOneLight(bsdf, sp.position, hn, hng, -dir, goesOn, rng));
-    if ((grid.flags & kProbeHistoryValid) != 0u)
+    // A mirror (a metal: no diffuse share) reads no probes; its reflection goes on instead.
+    if ((grid.flags & kProbeHistoryValid) != 0u && any(greaterThan(bsdf.diffuse, vec3(0.0))))
       bounce += beta * bsdf.diffuse / kPi * probeIrradiance(grid, sp.position, hn, -dir) * gb.albedo.a *
                 grid.historyScale;
     if (!goesOn) break;

@@ -1,5 +1,7 @@
 #version 460
 // variant: raw_specular.rgen RAW_RATE
+// variant: specular_queue.rgen SPECULAR_QUEUE
+// variant: specular_continue.rgen SPECULAR_QUEUE SPECULAR_CONTINUE
 #extension GL_EXT_ray_tracing : require
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
@@ -29,6 +31,12 @@
 // Beer–Lambert absorption inside volumes, thin walls. Every hit is shaded by shadeSurface(), the
 // lighting pass's own function, with shadow rays. Output: the specular radiance the lighting pass
 // adds (the diffuse layer of the first surface is the lighting pass's).
+// Compaction (SPECULAR_QUEUE, where the device launches rays indirectly): the pass traces every
+// path's first segment, then appends the paths that go on to a queue instead of looping on, and
+// its variant specular_continue.rgen (SPECULAR_CONTINUE) traces their remaining segments, one
+// dense invocation per path. In one launch a warp holding a single glass or mirror path runs every
+// later bounce at one lane's worth of work; in the queue the paths that go on fill the warps.
+// A path the full queue cannot take loops on in place, so the image is the same either way.
 // RAW_RATE (raw_specular.rgen, the raw ray rate of rt-specular, rayster bench --raw-rays). Replayed
 // exactly: the first ray of every path (lib/specular_path.glsl: the same mirror, glossy VNDF and
 // Fresnel choices, the same half-rate checkerboard). Approximated: the shadow rays at its hit. The
@@ -130,72 +138,168 @@ void skipLightVisibility(inout uint rng) { skipLightShadowRay(rng); }
 
 #include "lib/shading.glsl"
 
+#ifdef SPECULAR_QUEUE
+// The queue of paths that go on after their first segment (shared/types.h SpecularQueuedPath
+// packing; kSpecularQueueDivisor: its capacity, a share of the pixels) and its length, which is also
+// the width of the continuation's indirect launch (VkTraceRaysIndirectCommandKHR {width, 1, 1}).
+#ifdef SPECULAR_CONTINUE
+layout(set = 0, binding = 12, std430) readonly buffer SpecularQueue { uvec4 queuedPaths[]; };
+#else
+layout(set = 0, binding = 12, std430) writeonly buffer SpecularQueue { uvec4 queuedPaths[]; };
+layout(set = 0, binding = 13, std430) buffer SpecularQueueLength { uint queueLength; };
+#endif
+#endif
+
+// A specular path between segments.
+struct SpecularPath {
+  vec3 origin, dir;
+  vec3 beta;      // throughput
+  vec3 radiance;  // gathered so far, demodulated as the pass outputs it
+  float coneWidth;
+  uint rng;
+  uint bounce;  // the next segment's number, from 1
+  bool glossy;  // its first event was a glossy VNDF sample: one importance-picked light per hit
+};
+
+uint queueCapacity(uvec2 size) { return (size.x * size.y + kSpecularQueueDivisor - 1u) / kSpecularQueueDivisor; }
+
+#if defined(SPECULAR_QUEUE) && !defined(SPECULAR_CONTINUE)
+// Three uvec4 per path: origin + cone width, direction + random state, then throughput and radiance
+// as half floats and the pixel's index with the segment number and the glossy flag.
+void storePath(uint slot, SpecularPath path, ivec2 px, uint width) {
+  queuedPaths[3u * slot] = uvec4(floatBitsToUint(path.origin), floatBitsToUint(path.coneWidth));
+  queuedPaths[3u * slot + 1u] = uvec4(floatBitsToUint(path.dir), path.rng);
+  uint tag = uint(px.y) * width + uint(px.x) | path.bounce << kSpecularQueueBounceShift |
+             (path.glossy ? kSpecularQueueGlossy : 0u);
+  queuedPaths[3u * slot + 2u] = uvec4(packHalf2x16(path.beta.rg), packHalf2x16(vec2(path.beta.b, path.radiance.r)),
+                                      packHalf2x16(path.radiance.gb), tag);
+}
+#endif
+#ifdef SPECULAR_CONTINUE
+SpecularPath loadPath(uint slot, uint width, out ivec2 px) {
+  uvec4 a = queuedPaths[3u * slot], b = queuedPaths[3u * slot + 1u], c = queuedPaths[3u * slot + 2u];
+  SpecularPath path;
+  path.origin = uintBitsToFloat(a.xyz);
+  path.coneWidth = uintBitsToFloat(a.w);
+  path.dir = uintBitsToFloat(b.xyz);
+  path.rng = b.w;
+  vec2 br = unpackHalf2x16(c.x), bg = unpackHalf2x16(c.y), gb = unpackHalf2x16(c.z);
+  path.beta = vec3(br, bg.x);
+  path.radiance = vec3(bg.y, gb);
+  uint index = c.w & kSpecularQueuePixelMask;
+  px = ivec2(index % width, index / width);
+  path.bounce = (c.w >> kSpecularQueueBounceShift) & kSpecularQueueBounceMask;
+  path.glossy = (c.w & kSpecularQueueGlossy) != 0u;
+  return path;
+}
+#endif
+
+// One segment of the path: trace, shade the hit with shadow rays (the lighting pass's
+// shadeSurface()) and scatter on. False when the path ends there (a miss, a rough hit fully shaded,
+// a throughput too small to matter).
+bool specularSegment(inout SpecularPath path, float spread) {
+  payload.t = -1.0;
+  traceRayEXT(tlas, rayFlags(), kMaskVisible | kMaskCastsShadow, 0, 0, 0, path.origin, 0.0, path.dir, 1e30, 0);
+  if (payload.t < 0.0) {
+    path.radiance += path.beta * environmentRadiance(path.dir);
+    return false;
+  }
+  SurfacePoint sp;
+  MaterialRecord m;
+  surfaceAtHit(payload, path.origin, path.dir, sp, m);
+  bool entering = dot(path.dir, sp.geometricNormal) < 0.0;
+  bool thinHit = m.thickness <= 0.0;
+  // Beer–Lambert: leaving a volume, the path inside it was payload.t long.
+  if (!entering && !thinHit) path.beta *= volumeTransmittance(m, payload.t);
+  path.coneWidth += spread * payload.t;
+  setRayCone(path.coneWidth, sp.geometricNormal, path.dir);
+  GBufferValues gb = evaluateSurface(m, sp, path.origin);
+  ShadingInput s;
+  s.p = sp.position;
+  s.n = octDecode(gb.normals.xy);
+  s.ng = octDecode(gb.normals.zw);
+  s.v = -path.dir;
+  s.baseColor = srgbToLinear(gb.albedo.rgb);
+  s.metallic = gb.material.g;
+  s.roughness = gb.material.r;
+  s.transmission = gb.material.b;
+  s.specular = gb.specular;
+  s.ior = m.ior;
+  s.ao = gb.albedo.a;
+  s.emissive = gb.emissive.rgb;
+  s.tracedWeight = tracedSpecular(s.roughness, s.transmission) ? 1.0 : 0.0;
+  s.envOcclusion = 1.0;  // no AO at hits
+  // With probes, a hit's diffuse indirect light is theirs (as at G-buffer pixels), not ambient + SH.
+  s.useIndirect = (grid.flags & kProbeLookup) != 0u;
+  s.sunHighlights = false;
+  s.highlightWiden = 0.0;
+  s.useIndirectSpecular = s.useIndirect && !tracedSpecular(s.roughness, s.transmission);
+  s.indirect = s.indirectSpecular = vec3(0.0);
+  setLayers(s, gb.coat, gb.sheen);
+  if (s.useIndirect && readsIrradiance(s))  // not at the mirror and glass hits most paths go on through
+    probeIrradiance2(grid, s.p, s.n, s.v, s.useIndirectSpecular, reflect(-s.v, s.n), s.indirect, s.indirectSpecular);
+  // A glossy lobe averages its hits over frames and pixels anyway: there one light picked by
+  // importance (divided by its probability) stands in for the loop over all lights.
+  path.radiance += path.beta * shadeSurface(s, true, path.glossy || frame.manyLights != 0u, path.rng);
+  if (!tracedSpecular(s.roughness, s.transmission)) return false;  // rough: fully shaded, the path ends
+  scatter(path.dir, path.origin, path.beta, s.p, s.n, s.ng, entering, s.baseColor, s.metallic, s.transmission, m.ior,
+          thinHit, gb.specular, path.rng);
+  return max(path.beta.r, max(path.beta.g, path.beta.b)) >= 1e-3;
+}
+
+// The remaining segments, up to the frame's bound.
+void finishPath(inout SpecularPath path, float spread) {
+  const uint bounces = min(frame.maxSpecularBounces, kMaxSpecularBounces);
+  while (path.bounce <= bounces && specularSegment(path, spread)) ++path.bounce;
+}
+
+// Clamp fireflies of the stochastic glass paths to a bright but finite value before accumulation.
+vec4 pathResult(SpecularPath path) { return vec4(min(path.radiance, vec3(64.0)), 1.0); }
+
+#ifdef SPECULAR_CONTINUE
+
+void main() {
+  const uint slot = gl_LaunchIDEXT.x;
+  uvec2 size = uvec2(imageSize(outSpecular));
+  if (slot >= queueCapacity(size)) return;  // a full queue's overflow looped on in its own pixel
+  ivec2 px;
+  SpecularPath path = loadPath(slot, size.x, px);
+  finishPath(path, pixelSpreadAngle());
+  imageStore(outSpecular, px, pathResult(path));
+}
+
+#else
+
 void main() {
   ivec2 px = ivec2(gl_LaunchIDEXT.xy);
-  vec3 origin, dir, beta;
-  bool glossy;
+  SpecularPath path;
   vec4 result;
-  uint rng;
-  if (!specularFirstRay(px, origin, dir, beta, glossy, result, rng)) {
+  if (!specularFirstRay(px, path.origin, path.dir, path.beta, path.glossy, result, path.rng)) {
     imageStore(outSpecular, px, result);
     return;
   }
-  vec3 radiance = vec3(0.0);
+  path.radiance = vec3(0.0);
   // The pixel's ray cone: as wide at the G-buffer surface as the camera ray made it, then widening
   // by the same angle along every bounce (flat mirrors).
   const float spread = pixelSpreadAngle();
-  float coneWidth = spread * distance(frame.cameraPosition.xyz, origin);
-  for (uint bounce = 1u; bounce <= min(frame.maxSpecularBounces, kMaxSpecularBounces); ++bounce) {
-    payload.t = -1.0;
-    traceRayEXT(tlas, rayFlags(), kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
-    if (payload.t < 0.0) {
-      radiance += beta * environmentRadiance(dir);
-      break;
+  path.coneWidth = spread * distance(frame.cameraPosition.xyz, path.origin);
+  path.bounce = 1u;
+  // One copy of the segment's code (a second inlined copy, for the first segment alone, made the
+  // in-place loop a third slower on an H200): after the first segment a path that goes on is queued.
+  const uint bounces = min(frame.maxSpecularBounces, kMaxSpecularBounces);
+  while (specularSegment(path, spread) && ++path.bounce <= bounces) {
+#ifdef SPECULAR_QUEUE
+    if (path.bounce == 2u) {
+      uint slot = atomicAdd(queueLength, 1u);
+      if (slot < queueCapacity(gl_LaunchSizeEXT.xy)) {
+        storePath(slot, path, px, gl_LaunchSizeEXT.x);
+        return;  // specular_continue.rgen writes the pixel
+      }
     }
-    SurfacePoint sp;
-    MaterialRecord m;
-    surfaceAtHit(payload, origin, dir, sp, m);
-    bool entering = dot(dir, sp.geometricNormal) < 0.0;
-    bool thinHit = m.thickness <= 0.0;
-    // Beer–Lambert: leaving a volume, the path inside it was payload.t long.
-    if (!entering && !thinHit) beta *= volumeTransmittance(m, payload.t);
-    coneWidth += spread * payload.t;
-    setRayCone(coneWidth, sp.geometricNormal, dir);
-    GBufferValues gb = evaluateSurface(m, sp, origin);
-    ShadingInput s;
-    s.p = sp.position;
-    s.n = octDecode(gb.normals.xy);
-    s.ng = octDecode(gb.normals.zw);
-    s.v = -dir;
-    s.baseColor = srgbToLinear(gb.albedo.rgb);
-    s.metallic = gb.material.g;
-    s.roughness = gb.material.r;
-    s.transmission = gb.material.b;
-    s.specular = gb.specular;
-    s.ior = m.ior;
-    s.ao = gb.albedo.a;
-    s.emissive = gb.emissive.rgb;
-    s.tracedWeight = tracedSpecular(s.roughness, s.transmission) ? 1.0 : 0.0;
-    s.envOcclusion = 1.0;  // no AO at hits
-    // With probes, a hit's diffuse indirect light is theirs (as at G-buffer pixels), not ambient + SH.
-    s.useIndirect = (grid.flags & kProbeLookup) != 0u;
-    s.sunHighlights = false;
-    s.highlightWiden = 0.0;
-    s.useIndirectSpecular = s.useIndirect && !tracedSpecular(s.roughness, s.transmission);
-    s.indirect = s.indirectSpecular = vec3(0.0);
-    setLayers(s, gb.coat, gb.sheen);
-    if (s.useIndirect)
-      probeIrradiance2(grid, s.p, s.n, s.v, s.useIndirectSpecular, reflect(-s.v, s.n), s.indirect, s.indirectSpecular);
-    // A glossy lobe averages its hits over frames and pixels anyway: there one light picked by
-    // importance (divided by its probability) stands in for the loop over all lights.
-    radiance += beta * shadeSurface(s, true, glossy || frame.manyLights != 0u, rng);
-    if (!tracedSpecular(s.roughness, s.transmission)) break;  // rough: fully shaded, the path ends
-    scatter(dir, origin, beta, s.p, s.n, s.ng, entering, s.baseColor, s.metallic, s.transmission, m.ior, thinHit,
-            gb.specular, rng);
-    if (max(beta.r, max(beta.g, beta.b)) < 1e-3) break;
+#endif
   }
-  // Clamp fireflies of the stochastic glass paths to a bright but finite value before accumulation.
-  imageStore(outSpecular, px, vec4(min(radiance, vec3(64.0)), 1.0));
+  imageStore(outSpecular, px, pathResult(path));
 }
 
+#endif
 #endif

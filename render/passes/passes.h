@@ -95,9 +95,10 @@ struct RawTwinImages {
 struct RawTwinEffects {
   bool ao, direct, indirect, specular;
 };
-// `indirectQuarter`: as traceIndirect's `quarter` (raw-rt-indirect launches the same grid).
+// `indirectQuarter`, `aoHalf`: as traceIndirect's `quarter` and traceAo's `half` (the twins launch
+// the same grids).
 RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, RawTwinEffects effects,
-                            bool indirectQuarter, uint32_t lightsPerHit);
+                            bool indirectQuarter, bool aoHalf, uint32_t lightsPerHit);
 // Denoised by denoiseShadows() (render/passes/denoise.h).
 
 // Where the probe cascades' windows were at the last update (render/passes/gi_probes.cpp): the
@@ -134,17 +135,37 @@ struct ProbeLookup {
   gpu::ProbeGrid grid{};                            // flags has kProbeLookup when valid
   graph::ImageHandle specularIrradiance;            // E about each G-buffer pixel's mirror direction
 };
+// The queue of specular paths that go on after their first segment (shaders/specular.rgen.glsl
+// SPECULAR_QUEUE): the renderer keeps its buffers across frames; traceSpecular() sizes them.
+struct SpecularQueue {
+  rhi::Context* ctx = nullptr;
+  rhi::Buffer paths;   // gpu::kSpecularQueuePathWords words per path, one path per kSpecularQueueDivisor pixels
+  rhi::Buffer length;  // VkTraceRaysIndirectCommandKHR {paths queued, 1, 1}: the continuation's launch
+  graph::ResourceState pathsState, lengthState;
+  uint64_t pixels = 0;  // the frame size the buffers are for
+};
+// Whether the frame compacts its specular paths: --specular-queue on, and a device that can run the
+// queue at this size (indirect ray launches; pixel indices that fit a path's tag).
+bool useSpecularQueue(const rhi::Context& ctx, const RenderSettings& settings, VkExtent2D size);
 // `probes`: the probes light the diffuse part of the loop's hits (else ambient and the SH environment).
+// `queue`: compact the paths that go on into it ("rt-specular-continue"); null: every pixel's loop
+// runs in its own invocation of "rt-specular" (devices without indirect launches). The image is the
+// same either way.
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t bounces,
-                                 uint32_t lightsPerHit, const ProbeLookup& probes = {});
+                                 uint32_t lightsPerHit, const ProbeLookup& probes = {}, SpecularQueue* queue = nullptr);
 // Denoised by denoiseRadiance() (render/passes/denoise.h).
 
 // Ambient occlusion (R16F array, 1 unoccluded), 1 sample per pixel; 1 everywhere when
 // FrameConstants::effectFlags lacks kEffectAo. Written into layer FrameConstants::aoLayer of
 // `into` (the shadow visibility image, whose denoiser then takes AO as its last layer; returned),
 // or without it into a new one-layer image ("ao-raw"; aoLayer must be 0 then).
+// `half` (--ao-rate half; FrameConstants::effectFlags has kEffectAo | kEffectAoHalf): one pixel of
+// each checkerboard pair traced per frame (a half-width launch), the others filled by "rt-ao-fill".
 graph::ImageHandle traceAo(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                           graph::ImageHandle into = {});
+                           graph::ImageHandle into = {}, bool half = false);
+// --ao-rate: whether AO traces half the pixels per frame; rt-ao's launch for it.
+bool aoHalfRate(const RenderSettings& settings);
+VkExtent2D aoLaunchSize(VkExtent2D size, bool half);
 // One-bounce indirect diffuse irradiance E (RGBA16F, demodulated), 1 sample per pixel; 0 when
 // FrameConstants::effectFlags lacks kEffectIndirect. `quarter` (FrameConstants::effectFlags has
 // kEffectIndirect | kEffectIndirectQuarter): one traced pixel per 2×2 block ((w+1)/2 × (h+1)/2

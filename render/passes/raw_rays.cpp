@@ -46,12 +46,11 @@ using Reads = std::vector<std::pair<const char*, graph::ImageHandle>>;
 // pass it replays; `rays` its launched rays.
 graph::ImageHandle traceTwin(graph::RenderGraph& graph, const FrameInputs& in, const char* pass, const char* twinOf,
                              uint64_t rays, const char* image, const Reads& reads, const char* output,
-                             const char* raygen, bool quarterLaunch = false) {
+                             const char* raygen, VkExtent2D launch) {
   graph::ImageHandle out = graph.createImage(
       image, {kVisibilityFormat, in.size.width, in.size.height, 1, kScratchUsage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
       0u);  // hit counts and fractions, not light: never divided by the exposure
   const rhi::RayTracingPipeline& pipe = twinPipeline(in.pipelines, raygen);
-  const VkExtent2D launch = indirectLaunchSize(in.size, quarterLaunch);
   graph.addPass(
       pass,
       [&](graph::PassBuilder& b) {
@@ -100,17 +99,22 @@ void traceRawShadows(graph::RenderGraph& graph, const FrameInputs& in, const GBu
 }
 
 RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, RawTwinEffects effects,
-                            bool indirectQuarter, uint32_t lightsPerHit) {
+                            bool indirectQuarter, bool aoHalf, uint32_t lightsPerHit) {
   RawTwinImages t;
   const uint64_t pixels = uint64_t(in.size.width) * in.size.height;
   const Reads surface = {{"depthTex", gb.depth}, {"normalTex", gb.normals}};
-  if (effects.ao) t.ao = traceTwin(graph, in, "raw-rt-ao", "rt-ao", pixels, "raw-ao", surface, "outAo", "raw_ao.rgen");
+  if (effects.ao) {
+    const VkExtent2D launch = aoLaunchSize(in.size, aoHalf);
+    t.ao = traceTwin(graph, in, "raw-rt-ao", "rt-ao", uint64_t(launch.width) * launch.height, "raw-ao", surface,
+                     "outAo", "raw_ao.rgen", launch);
+  }
   if (effects.direct)
     t.direct = traceTwin(graph, in, "raw-rt-direct", "rt-direct", pixels, "raw-direct", surface, "outVisibility",
-                         "raw_direct.rgen");
+                         "raw_direct.rgen", in.size);
   if (effects.indirect)
-    t.indirect = traceTwin(graph, in, "raw-rt-indirect", "rt-indirect", indirectLaunch(in.size, indirectQuarter) * 2,
-                           "raw-indirect", surface, "outHit", "raw_indirect.rgen", indirectQuarter);
+    t.indirect =
+        traceTwin(graph, in, "raw-rt-indirect", "rt-indirect", indirectLaunch(in.size, indirectQuarter) * 2,
+                  "raw-indirect", surface, "outHit", "raw_indirect.rgen", indirectLaunchSize(in.size, indirectQuarter));
   // Only the first bounce: its ray and a shadow ray per light shaded at the hit.
   if (effects.specular)
     t.specular = traceTwin(graph, in, "raw-rt-specular", "rt-specular", pixels * (1u + lightsPerHit), "raw-specular",
@@ -120,7 +124,7 @@ RawTwinImages traceRawTwins(graph::RenderGraph& graph, const FrameInputs& in, co
                             {"materialTex", gb.material},
                             {"emissiveTex", gb.emissive},
                             {"specularGbufTex", gb.specular}},
-                           "outHit", "raw_specular.rgen");
+                           "outHit", "raw_specular.rgen", in.size);
   return t;
 }
 

@@ -62,6 +62,14 @@ void setLayers(inout ShadingInput s, vec4 coat, vec4 sheen) {
   s.sheenRoughness = sheen.a;
 }
 
+// Whether shadeSurface() reads s.indirect (a base with a diffuse share, a sheen) or
+// s.indirectSpecular (the untraced specular share, a coat): a smooth metal or clear glass reads
+// neither, so a caller can leave out the probe lookup (the specular loop's mirror and glass hits).
+bool readsIrradiance(ShadingInput s) {
+  return (s.metallic < 1.0 && s.transmission < 1.0) || any(greaterThan(s.sheenColor, vec3(0.0))) ||
+         s.useIndirectSpecular || s.clearcoat > 0.0;
+}
+
 // What the base keeps of light it sends towards v under the layers: 1 − the coat's view Fresnel,
 // times the sheen's albedo scaling at the view. Multiplies the traced specular light of the base
 // the lighting pass adds to shadeSurface().

@@ -32,6 +32,16 @@ RAYSTER_CONST uint kMaxShadowLights = 8u;  // one visibility layer each
 // of specular.rgen); RenderSettings::maxDepth picks 1..this, default kDefaultSpecularBounces.
 RAYSTER_CONST uint kMaxSpecularBounces = 8u;
 RAYSTER_CONST uint kDefaultSpecularBounces = 7u;  // the loop's historical bound (8 path vertices)
+// The queue of specular paths that go on after their first segment (specular.rgen SPECULAR_QUEUE,
+// render/passes/rt_specular.cpp): room for one path per kSpecularQueueDivisor pixels, 48 bytes each
+// (three uvec4); the last word of a path holds its pixel's index (y·width + x), the next segment's
+// number and the glossy flag.
+RAYSTER_CONST uint kSpecularQueueDivisor = 4u;
+RAYSTER_CONST uint kSpecularQueuePathWords = 12u;
+RAYSTER_CONST uint kSpecularQueuePixelMask = 0x07FFFFFFu;
+RAYSTER_CONST uint kSpecularQueueBounceShift = 27u;
+RAYSTER_CONST uint kSpecularQueueBounceMask = 0xFu;
+RAYSTER_CONST uint kSpecularQueueGlossy = 0x80000000u;
 // First surfaces rougher than FrameConstants::glossyThreshold fade from traced glossy reflections to
 // the environment approximation over this much roughness (lib/specular_weight.glsl); past
 // threshold + blend the specular pass traces nothing (render/gpu_scene.h SpecularSurfaces).
@@ -75,6 +85,10 @@ RAYSTER_CONST uint kEffectIndirectQuarter = 8u;
 // The probes (--gi probes) also give the untraced specular light: their irradiance about the
 // mirror direction / π (lighting's indirectSpecularTex), in place of the environment's.
 RAYSTER_CONST uint kEffectIndirectSpecular = 16u;
+// With kEffectAo: rt-ao traces half the pixels per frame, a checkerboard alternating with the frame
+// (a half-width launch, lib/ao_ray.glsl), and rt-ao-fill gives the others the mean of their
+// 4-neighbours on the same surface (--ao-rate half).
+RAYSTER_CONST uint kEffectAoHalf = 32u;
 // Levels of the prefiltered environment (render/gpu_environment.cpp): level k (1..N) is GGX
 // roughness k/N, each kPrefilteredWidth × kPrefilteredWidth/2, stacked vertically in one image.
 RAYSTER_CONST uint kPrefilteredLevels = 6u;

@@ -30,7 +30,7 @@ float at(const ImageF& img, int x, int y, int c = 0) { return img.pixel(x, y)[c]
 TEST(RawTwins, AoTwinTracesTheSameRaysAsRtAo) {
   // No alpha-tested geometry in whitted: the opaque twin's visibility is rt-ao's, texel for texel.
   auto dir = testDir();
-  auto img = renderTwins(dir, "builtin:whitted", "--primary raster", {"ao-raw", "raw-ao"});
+  auto img = renderTwins(dir, "builtin:whitted", "--primary raster --ao-rate full", {"ao-raw", "raw-ao"});
   ASSERT_EQ(img.size(), 2u);
   size_t occluded = 0, open = 0;
   for (int y = 0; y < kH; ++y)
@@ -41,6 +41,34 @@ TEST(RawTwins, AoTwinTracesTheSameRaysAsRtAo) {
   // Both outcomes occur, so equality says something about the rays.
   EXPECT_GT(occluded, 20u);
   EXPECT_GT(open, 20u);
+}
+
+TEST(RawTwins, HalfRateAoTwinTracesTheCheckerboardRtAoDoes) {
+  // --ao-rate half: the twin marks the pixels not traced this frame 0.25; they form a checkerboard
+  // (every 4-neighbour of one was traced), and on the traced ones its visibility is rt-ao's.
+  // rt-ao-fill gives the others a mean of their neighbours, in [0, 1].
+  auto dir = testDir();
+  auto img = renderTwins(dir, "builtin:whitted", "--primary raster --ao-rate half", {"ao-raw", "raw-ao"});
+  ASSERT_EQ(img.size(), 2u);
+  const ImageF& raw = img["raw-ao"];
+  const ImageF& pass = img["ao-raw"];
+  size_t skipped = 0, traced = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const float r = at(raw, x, y), a = at(pass, x, y);
+      if (r == 0.25f) {
+        ++skipped;
+        EXPECT_GE(a, 0.0f) << x << "," << y;
+        EXPECT_LE(a, 1.0f) << x << "," << y;
+        if (x + 1 < kW) EXPECT_NE(at(raw, x + 1, y), 0.25f) << x << "," << y;
+        if (y + 1 < kH) EXPECT_NE(at(raw, x, y + 1), 0.25f) << x << "," << y;
+      } else {
+        ++traced;
+        ASSERT_EQ(r, a) << x << "," << y;
+      }
+    }
+  EXPECT_EQ(skipped, size_t(kW) * kH / 2);
+  EXPECT_EQ(traced, size_t(kW) * kH / 2);
 }
 
 TEST(RawTwins, SpecularTwinTracesWhereTheSpecularPassDoes) {
