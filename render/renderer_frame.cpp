@@ -268,7 +268,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     traceRawPrimary(graph, in);
     traceRawShadows(graph, in, gb, lights);
     o.rawTwins = traceRawTwins(graph, in, gb, {ao, manyLights, indirect && !probes, specularPass}, indirectQuarter(s),
-                               lightsPerHit());
+                               shadowRaysPerHit());
   }
   // Probes first: the reflection bounce loop lights its hits from them too.
   // With --gi path they run too: the one-bounce rays' hits take their irradiance (every later
@@ -282,7 +282,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     if (probes) o.indirectRaw = o.indirect = e;
   }
   if (specularPass) {
-    o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit(), probeLookup);
+    o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), shadowRaysPerHit(), probeLookup);
     o.specular = svgf("specular", o.specularRaw);
   }
   const graph::ImageHandle direct = manyLights ? svgf("direct", traceDirect(graph, in, gb)) : black;

@@ -77,6 +77,7 @@ struct Renderer::Impl {
   ProbeCascadeState probeCascades;  // where the probe cascades' windows were (render/passes/gi_probes.cpp)
   InstanceMotion motion;            // animation and edits (render/instance_motion.h)
   bool manyLights = false;          // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
+  bool shadows = true;              // the run's RenderSettings::shadows (beginRun)
   // The exposure of each frame (render/exposure.h), and auto exposure's histogram: GPU-side, and
   // its host-visible copy, read after the frame's fence.
   ExposureControl exposure;
@@ -133,9 +134,13 @@ struct Renderer::Impl {
   }
   float aoRadius(const RenderSettings& s) const;
   int32_t findInstance(const std::string& name) const;
-  uint32_t shadowLights() const { return manyLights ? 0u : std::min(gpu.lightCount, gpu::kMaxShadowLights); }
-  // Lights shaded (each with a shadow ray) at a bounce hit: all of them, or one picked by importance.
-  uint32_t lightsPerHit() const { return manyLights ? 1u : gpu.lightCount; }
+  // Lights with a shadow layer: none with --shadows off or in many-light mode.
+  uint32_t shadowLights() const {
+    return !shadows || manyLights ? 0u : std::min(gpu.lightCount, gpu::kMaxShadowLights);
+  }
+  // Shadow rays at a bounce hit: one per light, one for the light picked by importance (many-light
+  // mode), none with --shadows off.
+  uint32_t shadowRaysPerHit() const { return !shadows ? 0u : manyLights ? 1u : gpu.lightCount; }
   // The hybrid with AO traces it into the shadow visibility image's layer shadowLights() and
   // denoises it with the lights in one shadow-denoiser run (renderer_frame.cpp recordHybrid).
   static bool aoInShadowImage(const RenderSettings& s) { return s.mode != Mode::Raster && s.ao; }
@@ -143,6 +148,7 @@ struct Renderer::Impl {
   // tracedSpecularWeight > 0, with a margin for the G-buffer's 8-bit roughness): otherwise the
   // hybrid records no specular pass.
   bool specularOn(const RenderSettings& s) const {
+    if (!s.reflections) return false;
     return specular.transmission ||
            specular.minRoughness <= std::max(s.mirrorRoughness, s.glossyThreshold + gpu::kGlossyBlend) + 1.0f / 255.0f;
   }

@@ -27,7 +27,9 @@
 // traced rays (RenderSettings::maxDepth): Fresnel between reflection and refraction (chosen stochastically, so the
 // estimate is unbiased and converges over frames), total internal reflection, η by side,
 // Beer–Lambert absorption inside volumes, thin walls. Every hit is shaded by shadeSurface(), the
-// lighting pass's own function, with shadow rays. Output: the specular radiance the lighting pass
+// lighting pass's own function, with shadow rays — or, with --shadows off (--effects mirrors,
+// frame.effectFlags without kEffectShadows), with none: each light lights what it faces, as in the
+// classic mirror-reflection samples (lib/shading.glsl shadeLight() never calls lightVisibility()). Output: the specular radiance the lighting pass
 // adds (the diffuse layer of the first surface is the lighting pass's).
 // RAW_RATE (raw_specular.rgen, the raw ray rate of rt-specular, rayster bench --raw-rays). Replayed
 // exactly: the first ray of every path (lib/specular_path.glsl: the same mirror, glossy VNDF and
@@ -107,7 +109,7 @@ void main() {
   hitT = floatBitsToUint(-1.0);
   traceRayEXT(tlas, rayFlags(), kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
   float t = uintBitsToFloat(hitT);
-  if (t >= 0.0) {
+  if (t >= 0.0 && shadowRaysOn()) {  // --shadows off: the pass traces no shadow ray at its hits
     vec3 p = origin + t * dir;
     if (glossy || frame.manyLights != 0u) {  // shadeDirect()'s one pick (lib/shading.glsl)
       float invPdf;

@@ -14,9 +14,10 @@ bool tracedSpecular(float roughness, float transmission) {
 }
 
 // How much of a G-buffer surface's specular light the specular pass traces (mirror, glass, glossy:
-// 1; past the glossy threshold it fades to 0); the rest comes from light sources and the
+// 1; past the glossy threshold it fades to 0; 0 everywhere with --reflections off); the rest comes from light sources and the
 // environment approximation.
 float tracedSpecularWeight(float roughness, float transmission) {
+  if ((frame.effectFlags & kEffectReflections) == 0u) return 0.0;  // --reflections off: nothing is traced
   if (transmission > 0.0 || roughness <= frame.mirrorRoughness) return 1.0;
   return 1.0 - clamp((roughness - frame.glossyThreshold) / kGlossyBlend, 0.0, 1.0);
 }

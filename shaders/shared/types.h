@@ -75,6 +75,16 @@ RAYSTER_CONST uint kEffectIndirectQuarter = 8u;
 // The probes (--gi probes) also give the untraced specular light: their irradiance about the
 // mirror direction / π (lighting's indirectSpecularTex), in place of the environment's.
 RAYSTER_CONST uint kEffectIndirectSpecular = 16u;
+// Lights cast shadows (--shadows, on by default): the shadow layers at the G-buffer surface and the
+// shadow rays at every hit of the bounce loops (reflections, indirect, probes). Unset
+// (--effects mirrors): every light reaches every point it faces, and no pass traces a shadow ray
+// (lib/frame.glsl shadowRaysOn(), lib/shading.glsl shadeLight()).
+RAYSTER_CONST uint kEffectShadows = 32u;
+// Reflections and refractions are traced (--reflections, on by default). Unset (--effects shadows):
+// no surface's specular light is traced (lib/specular_weight.glsl tracedSpecularWeight() is 0), so
+// mirrors and glass take the environment approximation as rough surfaces do, and rt-specular is
+// not recorded.
+RAYSTER_CONST uint kEffectReflections = 64u;
 // Levels of the prefiltered environment (render/gpu_environment.cpp): level k (1..N) is GGX
 // roughness k/N, each kPrefilteredWidth × kPrefilteredWidth/2, stacked vertically in one image.
 RAYSTER_CONST uint kPrefilteredLevels = 6u;
