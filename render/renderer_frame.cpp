@@ -98,7 +98,9 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   FrameImages images;
   if (rasterMode) {
     // Shadow maps look from the lights where they are now (lights on animated nodes move).
-    const RasterFrameOutput o = raster.record(graph, in, gb, motion.pose(scene, r.animated), camera, shadowLights());
+    const RasterFrameOutput o =
+        raster.record(graph, in, gb, motion.pose(scene, r.animated), camera,
+                      {shadowLights(), s.reflections, neutral.white(graph), neutral.black(graph)});
     images = {o.visibility, o.visibility, o.specular, o.specular, o.ao, o.ao, o.indirect, o.indirect, o.hdr};
   } else {
     images = recordHybrid(graph, in, gb, camera, moving);

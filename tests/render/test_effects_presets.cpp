@@ -117,6 +117,17 @@ TEST_F(EffectsPresets, ExplicitOptionsOverrideThePresetWhereverTheyStand) {
   EXPECT_EQ(d.json["max_depth"], 2u);
 }
 
+// The raster mode follows the same switches: no shadow maps without shadows, no screen-space
+// reflections without reflections.
+TEST_F(EffectsPresets, RasterModeRecordsOnlyTheEffectsOn) {
+  const Recorded shadows = run(kShadowsScene, "--mode raster --effects shadows");
+  EXPECT_TRUE(shadows.passes.count("shadow-maps") && shadows.passes.count("shadow-resolve"));
+  EXPECT_FALSE(shadows.passes.count("ssr") || shadows.passes.count("lighting-direct") || shadows.passes.count("taa"));
+  const Recorded mirrors = run(kMirrorsScene, "--mode raster --effects mirrors");
+  EXPECT_TRUE(mirrors.passes.count("ssr"));
+  EXPECT_FALSE(mirrors.passes.count("shadow-maps") || mirrors.passes.count("shadow-resolve"));
+}
+
 TEST_F(EffectsPresets, AnUnknownEffectIsABadArgument) {
   const RunResult r =
       runRayster("render builtin:whitted --size 16x16 --effects shadows,glare -o " + (dir_ / "bad.png").string());
