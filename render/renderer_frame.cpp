@@ -284,7 +284,8 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     if (probes) o.indirectRaw = o.indirect = e;
   }
   if (specularPass) {
-    o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), shadowRaysPerHit(), probeLookup);
+    o.specularRaw =
+        traceSpecular(graph, in, gb, specularBounces(s), shadowRaysPerHit(), specularFillOn(s), probeLookup);
     o.specular = svgf("specular", o.specularRaw);
   }
   const graph::ImageHandle direct = manyLights ? svgf("direct", traceDirect(graph, in, gb)) : black;

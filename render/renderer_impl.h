@@ -152,6 +152,16 @@ struct Renderer::Impl {
     return specular.transmission ||
            specular.minRoughness <= std::max(s.mirrorRoughness, s.glossyThreshold + gpu::kGlossyBlend) + 1.0f / 255.0f;
   }
+  // Whether any opaque surface is a glossy one traced at half rate (lib/specular_weight.glsl
+  // halfRateGlossy(): rougher than max(mirrorRoughness, kHalfRateRoughness), traced up to the glossy
+  // threshold + blend; with the G-buffer's 8-bit margin): otherwise rt-specular records no fill.
+  bool specularFillOn(const RenderSettings& s) const {
+    const float lo = std::max(s.mirrorRoughness, gpu::kHalfRateRoughness) - 1.0f / 255.0f;
+    const float hi = s.glossyThreshold + gpu::kGlossyBlend + 1.0f / 255.0f;
+    for (const auto& [a, b] : specular.opaqueRoughness)
+      if (b > lo && a < hi) return true;
+    return false;
+  }
   // Rays of the hybrid's reflection/refraction loop after the G-buffer surface (RenderSettings::maxDepth).
   static uint32_t specularBounces(const RenderSettings& s) {
     return std::clamp(s.maxDepth > 1 ? s.maxDepth - 1 : 1u, 1u, gpu::kMaxSpecularBounces);

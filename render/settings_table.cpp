@@ -82,7 +82,8 @@ Setting choice(std::string name, std::string group, std::string help, E RenderSe
 }
 
 // --effects: a preset or a list of kEffectNames, each name one switch of this table.
-bool* effectField(RenderSettings& r, std::string_view name) {
+template <class R>  // RenderSettings or const RenderSettings
+auto effectField(R& r, std::string_view name) -> decltype(&r.shadows) {
   if (name == "shadows") return &r.shadows;
   if (name == "reflections") return &r.reflections;
   if (name == "ao") return &r.ao;
@@ -95,7 +96,7 @@ bool* effectField(RenderSettings& r, std::string_view name) {
 Setting effectsPreset() {
   Setting s{"effects",
             SettingKind::Choice,
-            "The hybrid frame's effects: all (every effect, the default), shadows (primary visibility and one "
+            "The frame's effects: all (every effect, the default), shadows (primary visibility and one "
             "shadow ray per pixel and light, lighting and tonemap only), mirrors (reflections and refractions "
             "without shadows, --max-depth 5: up to 4 mirror bounces), none, or a comma-separated LIST of shadows, "
             "reflections, ao, gi, denoise, taa turning on exactly those; options given explicitly (--taa on) "
@@ -109,11 +110,10 @@ Setting effectsPreset() {
   s.preset = true;
   s.typeHint = "all|shadows|mirrors|none|LIST";
   s.get = [](const RenderSettings& r) {
-    RenderSettings copy = r;
     std::string list;
     size_t on = 0;
     for (const char* name : kEffectNames)
-      if (*effectField(copy, name)) {
+      if (*effectField(r, name)) {
         list += (list.empty() ? "" : ",") + std::string(name);
         ++on;
       }

@@ -135,8 +135,10 @@ struct ProbeLookup {
   graph::ImageHandle specularIrradiance;            // E about each G-buffer pixel's mirror direction
 };
 // `probes`: the probes light the diffuse part of the loop's hits (else ambient and the SH environment).
+// `halfRateFill`: some surface is glossy enough to be traced at half rate, so "rt-specular-fill"
+// fills the untraced half (false: no surface is, and the fill is not recorded).
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t bounces,
-                                 uint32_t lightsPerHit, const ProbeLookup& probes = {});
+                                 uint32_t lightsPerHit, bool halfRateFill, const ProbeLookup& probes = {});
 // Denoised by denoiseRadiance() (render/passes/denoise.h).
 
 // Ambient occlusion (R16F array, 1 unoccluded), 1 sample per pixel; 1 everywhere when

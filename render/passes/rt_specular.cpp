@@ -1,13 +1,14 @@
 // Pass 4: ray-traced reflections and refractions (the raygen bounce loop); denoised by SVGF
 // (denoise_svgf.cpp). Rough glossy reflections trace half the pixels per frame in a checkerboard
-// (lib/specular_weight.glsl); "rt-specular-fill" fills the other half from their neighbours, in place.
+// (lib/specular_weight.glsl); "rt-specular-fill" fills the other half from their neighbours, in place
+// (recorded only where some surface is that rough: Renderer::Impl::specularFillOn).
 #include "render/passes/passes.h"
 #include "render/pipelines.h"
 
 namespace rayster::render {
 
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t bounces,
-                                 uint32_t lightsPerHit, const ProbeLookup& probes) {
+                                 uint32_t lightsPerHit, bool halfRateFill, const ProbeLookup& probes) {
   graph::ImageHandle out =
       graph.createImage("specular-raw",
                         {kRadianceFormat, in.size.width, in.size.height, 1,
@@ -39,6 +40,7 @@ graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& i
         pc.push(grid);
         pipe.trace(pc.cmd, size.width, size.height);
       });
+  if (!halfRateFill) return out;  // nothing traced at half rate: nothing to fill
   const rhi::Pipeline& fill = in.pipelines.compute("specular_fill.comp");
   graph.addPass(
       "rt-specular-fill",

@@ -22,12 +22,12 @@ float tracedSpecularWeight(float roughness, float transmission) {
   return 1.0 - clamp((roughness - frame.glossyThreshold) / kGlossyBlend, 0.0, 1.0);
 }
 
-// Glossy first reflections at least this rough are traced on half the pixels each frame, in a
-// checkerboard that alternates with the frame (docs/techniques.md §13); the specular fill pass gives the
-// other half the mean of their traced neighbours. Their lobe already blurs the reflection over more
-// than the pixel's footprint at the distances that matter, and SVGF's temporal accumulation sees
-// every pixel traced every other frame. Smoother lobes (and mirrors, glass) trace at every pixel.
-const float kHalfRateRoughness = 0.2;
+// Glossy first reflections at least kHalfRateRoughness rough (shared/types.h) are traced on half
+// the pixels each frame, in a checkerboard that alternates with the frame (docs/techniques.md §13);
+// the specular fill pass gives the other half the mean of their traced neighbours. Their lobe
+// already blurs the reflection over more than the pixel's footprint at the distances that matter,
+// and SVGF's temporal accumulation sees every pixel traced every other frame. Smoother lobes (and
+// mirrors, glass) trace at every pixel.
 
 // A G-buffer surface whose glossy reflection is traced at half rate.
 bool halfRateGlossy(float depth, vec4 mat) {

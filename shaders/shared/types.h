@@ -36,6 +36,10 @@ RAYSTER_CONST uint kDefaultSpecularBounces = 7u;  // the loop's historical bound
 // the environment approximation over this much roughness (lib/specular_weight.glsl); past
 // threshold + blend the specular pass traces nothing (render/gpu_scene.h SpecularSurfaces).
 RAYSTER_CONST float kGlossyBlend = 0.1;
+// Glossy first reflections at least this rough are traced on half the pixels each frame, the other
+// half filled by rt-specular-fill (lib/specular_weight.glsl halfRateGlossy()); a scene with no
+// opaque surface in that range records no fill pass (render/renderer_impl.h specularFillOn()).
+RAYSTER_CONST float kHalfRateRoughness = 0.2;
 RAYSTER_CONST uint kDfgSize = 32u;  // split-sum DFG table, kDfgSize² texels (render/dfg.h)
 RAYSTER_CONST uint kBackgroundId = 0xFFFFFFFFu;
 RAYSTER_CONST uint kNoTexture = 0xFFFFFFFFu;
