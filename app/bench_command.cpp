@@ -165,6 +165,7 @@ Result<json> runConfig(const BenchOptions& o, const BenchConfig& c) {
     s.rawRays = c.rawRays;
     s.culling = c.culling;
     if (Status applied = applySettings(c.settings, s); !applied) return applied.error();
+    s.maxDepth = c.maxDepth;  // the plan's depth already holds a preset's (bench_plan.cpp sweepDepths)
     auto out = (*renderer)->render(s);
     if (!out) return out.error();
     result = configResult(**ctx, c, s, *out);

@@ -75,16 +75,29 @@ Status checkAxes(const BenchAxes& a) {
       return makeError(ExitCode::BadArguments, "bench: unknown primary '{}'", p);
   for (uint32_t d : a.maxDepths)
     if (d < 1 || d > 8) return makeError(ExitCode::BadArguments, "bench: max depth {} is outside 1..8", d);
-  if (a.scenes.empty() || a.sizes.empty() || a.modes.empty() || a.primaries.empty() || a.maxDepths.empty())
+  if (a.scenes.empty() || a.sizes.empty() || a.modes.empty() || a.primaries.empty())
     return makeError(ExitCode::BadArguments, "bench: an axis has no values");
   if (a.frames == 0) return makeError(ExitCode::BadArguments, "bench: --frames must be at least 1");
   if (a.shadowLights > 8) return makeError(ExitCode::BadArguments, "bench: shadow lights must be 0..8");
   return okStatus();
 }
 
+// The depths a sweep runs: the axis given, else the bench's default or what a preset of the
+// sweep's settings sets (--effects mirrors: its 4 bounces), an explicit --max-depth winning as for render.
+std::vector<uint32_t> sweepDepths(const BenchAxes& a) {
+  if (!a.maxDepths.empty()) return a.maxDepths;
+  render::RenderSettings s;
+  s.maxDepth = kBenchMaxDepth;
+  for (const auto& [name, value] : a.settings)
+    if (const render::Setting* setting = render::findSetting(name); setting && setting->preset)
+      (void)setting->set(s, value);  // checked by checkSettings
+  return {s.maxDepth};
+}
+
 void appendSweep(BenchPlan& plan, const std::string& name, const BenchAxes& a) {
+  const std::vector<uint32_t> depths = sweepDepths(a);
   const std::string axis = a.sizes.size() > 1       ? "size"
-                           : a.maxDepths.size() > 1 ? "max_depth"
+                           : depths.size() > 1      ? "max_depth"
                            : a.scenes.size() > 1    ? "scene"
                            : a.primaries.size() > 1 ? "primary"
                                                     : "mode";
@@ -92,7 +105,7 @@ void appendSweep(BenchPlan& plan, const std::string& name, const BenchAxes& a) {
     for (const auto& size : a.sizes)
       for (const auto& mode : a.modes)
         for (const auto& primary : a.primaries)
-          for (uint32_t depth : a.maxDepths) {
+          for (uint32_t depth : depths) {
             BenchConfig c;
             c.sweep = name;
             c.axis = axis;

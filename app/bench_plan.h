@@ -37,13 +37,17 @@ struct BenchPlan {
   std::vector<BenchConfig> configs;
 };
 
-// Axes given on the command line; every list holds at least one value.
+// The bench's specular depth when neither --max-depth nor a preset gives one.
+inline constexpr uint32_t kBenchMaxDepth = 7;
+
+// Axes given on the command line; every list but maxDepths holds at least one value.
 struct BenchAxes {
   std::vector<std::string> scenes{"builtin:whitted"};
   std::vector<std::string> sizes{"1920x1080"};
   std::vector<std::string> modes{"hybrid"};
   std::vector<std::string> primaries{"auto"};
-  std::vector<uint32_t> maxDepths{7};
+  // Empty: kBenchMaxDepth, or what a preset of `settings` sets (--effects mirrors: 5).
+  std::vector<uint32_t> maxDepths;
   uint32_t shadowLights = 8, warmup = 16, frames = 64, seed = 1;
   bool rawRays = false;
   bool culling = true;

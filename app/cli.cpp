@@ -223,7 +223,9 @@ CLI::App* addBenchCommand(CLI::App& cli, BenchOptions& bo) {
       ->delimiter(',');
   bench->add_option("--primary", bo.axes.primaries, "G-buffer producers, comma-separated: raster, rt, auto")
       ->delimiter(',');
-  bench->add_option("--max-depth", bo.axes.maxDepths, "Specular bounce depths, comma-separated (1-8, default 7)")
+  bench
+      ->add_option("--max-depth", bo.axes.maxDepths,
+                   "Specular bounce depths, comma-separated (1-8, default 7; 5 with --effects mirrors)")
       ->delimiter(',');
   bench->add_option("--shadow-lights", bo.axes.shadowLights, "As for render (0-8, default 8)");
   bench->add_option("--warmup", bo.axes.warmup, "Frames rendered before measuring (default 16)");

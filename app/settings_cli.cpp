@@ -30,12 +30,16 @@ void addSettingOptions(CLI::App* command, render::SettingUse use, SettingValues&
 }
 
 Status applySettings(const SettingValues& values, render::RenderSettings& settings) {
-  for (const auto& [name, value] : values) {
-    const render::Setting* s = render::findSetting(name);
-    if (!s) return makeError(ExitCode::BadArguments, "unknown setting '{}'", name);
-    if (!s->excludes.empty() && values.count(s->excludes))
-      return makeError(ExitCode::BadArguments, "--{} and --{} cannot be given together", s->name, s->excludes);
-    if (Status ok = s->set(settings, value); !ok) return ok;
+  // Presets first (--effects), then every other setting: an explicit option overrides a preset.
+  for (const bool presets : {true, false}) {
+    for (const auto& [name, value] : values) {
+      const render::Setting* s = render::findSetting(name);
+      if (!s) return makeError(ExitCode::BadArguments, "unknown setting '{}'", name);
+      if (s->preset != presets) continue;
+      if (!s->excludes.empty() && values.count(s->excludes))
+        return makeError(ExitCode::BadArguments, "--{} and --{} cannot be given together", s->name, s->excludes);
+      if (Status ok = s->set(settings, value); !ok) return ok;
+    }
   }
   return okStatus();
 }

@@ -23,7 +23,8 @@ using SettingValues = std::map<std::string, std::string>;
 // `defaults`: the command's settings before any option (what --help shows as the default).
 void addSettingOptions(CLI::App* command, render::SettingUse use, SettingValues& values,
                        const render::RenderSettings& defaults = {});
-// Applies the given values to `settings` (each already checked).
+// Applies the given values to `settings` (each already checked): presets (--effects) first, so the
+// settings given explicitly override what a preset set.
 Status applySettings(const SettingValues& values, render::RenderSettings& settings);
 // Every setting of the table, as the JSON outputs record it: switches as booleans, numbers as
 // numbers, choices as their names.

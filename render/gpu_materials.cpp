@@ -59,22 +59,32 @@ rhi::Image uploadTexture(rhi::UploadBatch& batch, const scene::ImageData& img) {
 
 SpecularSurfaces specularSurfaces(const scene::Scene& scene) {
   SpecularSurfaces out;
-  std::map<int32_t, float> lowestG;  // by texture: the lowest G of its image's texels
+  // By texture: the lowest and highest G of its image's texels.
+  std::map<int32_t, std::pair<float, float>> rangeG;
   for (const scene::Material& m : scene.materials) {
-    if (m.unlit) continue;  // scatters nothing (see above)
+    if (m.unlit) {  // scatters nothing (see above); its G-buffer says roughness 1 (lib/surface.glsl)
+      out.opaqueRoughness.emplace_back(1.0f, 1.0f);
+      continue;
+    }
     out.transmission = out.transmission || m.transmission > 0.0f;
-    float texture = 1.0f;
+    std::pair<float, float> texture{1.0f, 1.0f};
     if (const int32_t t = m.metallicRoughnessTexture.texture; t >= 0) {
-      auto [it, fresh] = lowestG.try_emplace(t, 0.0f);
+      auto [it, fresh] = rangeG.try_emplace(t, 0.0f, 1.0f);  // an image not decoded: assume the worst
       if (fresh && size_t(t) < scene.textures.size() && scene.textures[size_t(t)].image < scene.images.size()) {
         const scene::ImageData& img = scene.images[scene.textures[size_t(t)].image];
-        uint8_t g = img.rgba.empty() ? 0 : 255;  // an image not decoded: assume the worst
-        for (size_t i = 1; i < img.rgba.size(); i += 4) g = std::min(g, img.rgba[i]);
-        it->second = g / 255.0f;
+        uint8_t lo = img.rgba.empty() ? 0 : 255, hi = img.rgba.empty() ? 255 : 0;
+        for (size_t i = 1; i < img.rgba.size(); i += 4) {
+          lo = std::min(lo, img.rgba[i]);
+          hi = std::max(hi, img.rgba[i]);
+        }
+        it->second = {lo / 255.0f, hi / 255.0f};
       }
       texture = it->second;
     }
-    out.minRoughness = std::min(out.minRoughness, std::clamp(m.roughness * texture, 0.0f, 1.0f));
+    out.minRoughness = std::min(out.minRoughness, std::clamp(m.roughness * texture.first, 0.0f, 1.0f));
+    if (m.transmission <= 0.0f || m.transmissionTexture.texture >= 0)  // a texture may make it opaque
+      out.opaqueRoughness.emplace_back(std::clamp(m.roughness * texture.first, 0.0f, 1.0f),
+                                       std::clamp(m.roughness * texture.second, 0.0f, 1.0f));
   }
   return out;
 }

@@ -106,6 +106,10 @@ std::vector<gpu::Vertex> gpuVertices(const scene::Primitive& prim);
 struct SpecularSurfaces {
   float minRoughness = 1.0f;
   bool transmission = false;
+  // The roughness range of every material that may be opaque somewhere (its factor times its
+  // texture's lowest and highest G): with none in the half-rate glossy range, rt-specular traces
+  // every pixel it traces at all and its fill has nothing to do (Renderer::Impl::specularFillOn).
+  std::vector<std::pair<float, float>> opaqueRoughness;
 };
 SpecularSurfaces specularSurfaces(const scene::Scene& scene);
 

@@ -14,19 +14,27 @@ RasterFrame::RasterFrame(rhi::Context& ctx)
              "shadow-setup") {}
 
 RasterFrameOutput RasterFrame::record(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                      const scene::Scene& scene, const scene::Camera& camera, uint32_t shadowLights) {
-  atlas_ = planShadowAtlas(scene, in.scene.bounds, camera, float(in.size.width) / float(in.size.height), shadowLights);
-  std::memcpy(setup_.mapped(), &atlas_.setup, sizeof(atlas_.setup));
+                                      const scene::Scene& scene, const scene::Camera& camera,
+                                      const RasterEffects& effects) {
   RasterFrameOutput out;
-  const graph::ImageHandle atlas = renderShadowAtlas(graph, in, atlas_);
-  out.visibility = resolveShadows(graph, in, gb, atlas, setup_, shadowLights);
+  out.visibility = effects.white;
+  if (effects.shadowLights > 0) {
+    atlas_ = planShadowAtlas(scene, in.scene.bounds, camera, float(in.size.width) / float(in.size.height),
+                             effects.shadowLights);
+    std::memcpy(setup_.mapped(), &atlas_.setup, sizeof(atlas_.setup));
+    const graph::ImageHandle atlas = renderShadowAtlas(graph, in, atlas_);
+    out.visibility = resolveShadows(graph, in, gb, atlas, setup_, effects.shadowLights);
+  }
   const RasterConstants constants = rasterConstants(graph, in);
   out.ao = constants.ao;
   out.indirect = constants.zero;
-  // Lit without specular light: what reflections and refractions see.
-  const graph::ImageHandle lit = shadeLighting(
-      graph, in, gb, {out.visibility, constants.zero, constants.ao, constants.zero, {}}, "lighting-direct");
-  out.specular = screenSpaceSpecular(graph, in, gb, lit);
+  out.specular = effects.black;
+  if (effects.reflections) {
+    // Lit without specular light: what reflections and refractions see.
+    const graph::ImageHandle lit = shadeLighting(
+        graph, in, gb, {out.visibility, constants.zero, constants.ao, constants.zero, {}}, "lighting-direct");
+    out.specular = screenSpaceSpecular(graph, in, gb, lit);
+  }
   out.hdr = shadeLighting(graph, in, gb, {out.visibility, out.specular, constants.ao, constants.zero, {}});
   return out;
 }

@@ -21,13 +21,22 @@ struct RasterFrameOutput {
   graph::ImageHandle indirect;    // constant 0 (ambient and SH environment light instead)
 };
 
+// What the raster frame leaves out (off means gone, docs/architecture.md §2.2): with no shadowed
+// light (--shadows off) no shadow maps, without reflections (--reflections off) no screen-space
+// reflections; lighting reads the neutral `white` visibility or `black` specular light instead.
+struct RasterEffects {
+  uint32_t shadowLights = 0;
+  bool reflections = true;
+  graph::ImageHandle white, black;
+};
+
 // Keeps what a frame's passes read after recording: the shadow layout and its uniform buffer
 // (rewritten each frame; frames are serialised).
 class RasterFrame {
  public:
   explicit RasterFrame(rhi::Context& ctx);
   RasterFrameOutput record(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                           const scene::Scene& scene, const scene::Camera& camera, uint32_t shadowLights);
+                           const scene::Scene& scene, const scene::Camera& camera, const RasterEffects& effects);
 
  private:
   rhi::Buffer setup_;

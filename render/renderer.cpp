@@ -165,7 +165,8 @@ glm::mat4 Renderer::Impl::writeConstants(const RenderSettings& s, const scene::C
       (s.mode == Mode::Raster ? 0u : (s.ao ? gpu::kEffectAo : 0u) | (indirectOn(s) ? gpu::kEffectIndirect : 0u)) |
       (indirectQuarter(s) ? gpu::kEffectIndirectQuarter : 0u) | (aoHalfRate(s) ? gpu::kEffectAoHalf : 0u) |
       (s.mode != Mode::Raster && indirectOn(s) && passSettingText(s, "gi") == "probes" ? gpu::kEffectIndirectSpecular
-                                                                                       : 0u);
+                                                                                       : 0u) |
+      (s.shadows ? gpu::kEffectShadows : 0u) | (s.reflections ? gpu::kEffectReflections : 0u);
   fc.dfgSlot = gpu.dfgSlot;
   fc.sheenSlot = gpu.sheenSlot;
   fc.emissiveTriangles = gpu.emissiveTriangles.address();
@@ -330,7 +331,8 @@ Status Renderer::Impl::beginRun(const RenderSettings& s) {
   out.modeUsed = s.mode;
   // The raster mode shadows the first shadowLights lights from shadow maps and leaves the rest
   // unshadowed: stochastic light selection needs shadow rays.
-  manyLights = !rasterMode && gpu.lightCount > std::min(s.shadowLights, gpu::kMaxShadowLights);
+  shadows = s.shadows;
+  manyLights = shadows && !rasterMode && gpu.lightCount > std::min(s.shadowLights, gpu::kMaxShadowLights);
   if (manyLights)
     log::info("{} lights, {} shadow layers: one light per pixel by importance", gpu.lightCount,
               std::min(s.shadowLights, gpu::kMaxShadowLights));

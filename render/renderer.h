@@ -92,6 +92,13 @@ struct RenderSettings {
   // one GGX VNDF sample per pixel; rougher ones fade to the environment approximation over 0.1.
   float mirrorRoughness = 0.1f;
   float glossyThreshold = 0.5f;
+  // Lights cast shadows (--shadows): the hybrid's rt-shadows layers (or many-light mode's rt-direct)
+  // and the shadow rays at the hits of its bounce loops; the raster mode's shadow maps. Off, every
+  // light reaches whatever faces it and no pass traces a shadow ray (gpu::kEffectShadows).
+  bool shadows = true;
+  // Ray-traced reflections and refractions (--reflections, the hybrid's rt-specular). Off, mirrors,
+  // glossy surfaces and glass take the environment approximation (gpu::kEffectReflections).
+  bool reflections = true;
   // Ray-traced ambient occlusion (docs/techniques.md §15) of ambient and environment light.
   bool ao = true;
   // The hybrid's denoisers (shadows, AO, reflections, indirect, many-light direct light); off:

@@ -98,7 +98,9 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
   FrameImages images;
   if (rasterMode) {
     // Shadow maps look from the lights where they are now (lights on animated nodes move).
-    const RasterFrameOutput o = raster.record(graph, in, gb, motion.pose(scene, r.animated), camera, shadowLights());
+    const RasterFrameOutput o =
+        raster.record(graph, in, gb, motion.pose(scene, r.animated), camera,
+                      {shadowLights(), s.reflections, neutral.white(graph), neutral.black(graph)});
     images = {o.visibility, o.visibility, o.specular, o.specular, o.ao, o.ao, o.indirect, o.indirect, o.hdr};
   } else {
     images = recordHybrid(graph, in, gb, camera, moving);
@@ -268,7 +270,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     traceRawPrimary(graph, in);
     traceRawShadows(graph, in, gb, lights);
     o.rawTwins = traceRawTwins(graph, in, gb, {ao, manyLights, indirect && !probes, specularPass}, indirectQuarter(s),
-                               aoHalfRate(s), lightsPerHit());
+                               aoHalfRate(s), shadowRaysPerHit());
   }
   // Probes first: the reflection bounce loop lights its hits from them too.
   // With --gi path they run too: the one-bounce rays' hits take their irradiance (every later
@@ -283,7 +285,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   }
   if (specularPass) {
     specularQueue.ctx = &ctx;
-    o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), lightsPerHit(), probeLookup,
+    o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), shadowRaysPerHit(), specularFillOn(s), probeLookup,
                                   useSpecularQueue(ctx, s, in.size) ? &specularQueue : nullptr);
     o.specular = svgf("specular", o.specularRaw);
   }

@@ -78,6 +78,7 @@ struct Renderer::Impl {
   SpecularQueue specularQueue;      // the specular paths' continuation queue (render/passes/rt_specular.cpp)
   InstanceMotion motion;            // animation and edits (render/instance_motion.h)
   bool manyLights = false;          // more lights than shadow layers: stochastic direct light (lib/light_select.glsl)
+  bool shadows = true;              // the run's RenderSettings::shadows (beginRun)
   // The exposure of each frame (render/exposure.h), and auto exposure's histogram: GPU-side, and
   // its host-visible copy, read after the frame's fence.
   ExposureControl exposure;
@@ -134,9 +135,13 @@ struct Renderer::Impl {
   }
   float aoRadius(const RenderSettings& s) const;
   int32_t findInstance(const std::string& name) const;
-  uint32_t shadowLights() const { return manyLights ? 0u : std::min(gpu.lightCount, gpu::kMaxShadowLights); }
-  // Lights shaded (each with a shadow ray) at a bounce hit: all of them, or one picked by importance.
-  uint32_t lightsPerHit() const { return manyLights ? 1u : gpu.lightCount; }
+  // Lights with a shadow layer: none with --shadows off or in many-light mode.
+  uint32_t shadowLights() const {
+    return !shadows || manyLights ? 0u : std::min(gpu.lightCount, gpu::kMaxShadowLights);
+  }
+  // Shadow rays at a bounce hit: one per light, one for the light picked by importance (many-light
+  // mode), none with --shadows off.
+  uint32_t shadowRaysPerHit() const { return !shadows ? 0u : manyLights ? 1u : gpu.lightCount; }
   // The hybrid with AO traces it into the shadow visibility image's layer shadowLights() and
   // denoises it with the lights in one shadow-denoiser run (renderer_frame.cpp recordHybrid).
   static bool aoInShadowImage(const RenderSettings& s) { return s.mode != Mode::Raster && s.ao; }
@@ -144,8 +149,19 @@ struct Renderer::Impl {
   // tracedSpecularWeight > 0, with a margin for the G-buffer's 8-bit roughness): otherwise the
   // hybrid records no specular pass.
   bool specularOn(const RenderSettings& s) const {
+    if (!s.reflections) return false;
     return specular.transmission ||
            specular.minRoughness <= std::max(s.mirrorRoughness, s.glossyThreshold + gpu::kGlossyBlend) + 1.0f / 255.0f;
+  }
+  // Whether any opaque surface is a glossy one traced at half rate (lib/specular_weight.glsl
+  // halfRateGlossy(): rougher than max(mirrorRoughness, kHalfRateRoughness), traced up to the glossy
+  // threshold + blend; with the G-buffer's 8-bit margin): otherwise rt-specular records no fill.
+  bool specularFillOn(const RenderSettings& s) const {
+    const float lo = std::max(s.mirrorRoughness, gpu::kHalfRateRoughness) - 1.0f / 255.0f;
+    const float hi = s.glossyThreshold + gpu::kGlossyBlend + 1.0f / 255.0f;
+    for (const auto& [a, b] : specular.opaqueRoughness)
+      if (b > lo && a < hi) return true;
+    return false;
   }
   // Rays of the hybrid's reflection/refraction loop after the G-buffer surface (RenderSettings::maxDepth).
   static uint32_t specularBounces(const RenderSettings& s) {

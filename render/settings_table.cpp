@@ -81,6 +81,75 @@ Setting choice(std::string name, std::string group, std::string help, E RenderSe
   return s;
 }
 
+// --effects: a preset or a list of kEffectNames, each name one switch of this table.
+template <class R>  // RenderSettings or const RenderSettings
+auto effectField(R& r, std::string_view name) -> decltype(&r.shadows) {
+  if (name == "shadows") return &r.shadows;
+  if (name == "reflections") return &r.reflections;
+  if (name == "ao") return &r.ao;
+  if (name == "gi") return &r.indirect;
+  if (name == "denoise") return &r.denoise;
+  if (name == "taa") return &r.taa;
+  return nullptr;
+}
+
+Setting effectsPreset() {
+  Setting s{"effects",
+            SettingKind::Choice,
+            "The frame's effects: all (every effect, the default), shadows (primary visibility and one "
+            "shadow ray per pixel and light, lighting and tonemap only), mirrors (reflections and refractions "
+            "without shadows, --max-depth 5: up to 4 mirror bounces), none, or a comma-separated LIST of shadows, "
+            "reflections, ao, gi, denoise, taa turning on exactly those; options given explicitly (--taa on) "
+            "override it",
+            {"all", "shadows", "mirrors", "none"},
+            0,
+            0,
+            "Effects",
+            kUseAll,
+            true};
+  s.preset = true;
+  s.typeHint = "all|shadows|mirrors|none|LIST";
+  s.get = [](const RenderSettings& r) {
+    std::string list;
+    size_t on = 0;
+    for (const char* name : kEffectNames)
+      if (*effectField(r, name)) {
+        list += (list.empty() ? "" : ",") + std::string(name);
+        ++on;
+      }
+    if (on == std::size(kEffectNames)) return std::string("all");
+    if (on == 0) return std::string("none");
+    if (list == "reflections" && r.maxDepth == kMirrorsMaxDepth) return std::string("mirrors");
+    return list;
+  };
+  s.set = [](RenderSettings& r, std::string_view text) -> Status {
+    std::vector<std::string> names;
+    if (text == "all") {
+      names.assign(std::begin(kEffectNames), std::end(kEffectNames));
+    } else if (text == "mirrors") {
+      names = {"reflections"};
+    } else if (text != "none") {
+      size_t start = 0;
+      while (start <= text.size()) {
+        const size_t comma = std::min(text.find(',', start), text.size());
+        const std::string name(text.substr(start, comma - start));
+        if (!effectField(r, name))
+          return makeError(ExitCode::BadArguments,
+                           "--effects: '{}' is no effect (all, shadows, mirrors, none, or a list of shadows, "
+                           "reflections, ao, gi, denoise, taa)",
+                           name);
+        names.push_back(name);
+        start = comma + 1;
+      }
+    }
+    for (const char* name : kEffectNames) *effectField(r, name) = false;
+    for (const std::string& name : names) *effectField(r, name) = true;
+    if (text == "mirrors") r.maxDepth = kMirrorsMaxDepth;
+    return okStatus();
+  };
+  return s;
+}
+
 std::vector<Setting> makeTable() {
   std::vector<Setting> t;
   const uint32_t renderView = kUseRender | kUseView;  // bench sweeps these as axes of its own
@@ -156,6 +225,15 @@ std::vector<Setting> makeTable() {
                     &RenderSettings::taa));
   t.push_back(onOff("culling", "Render", "GPU frustum culling of the raster G-buffer's draws (indirect draws)",
                     &RenderSettings::culling));
+  t.push_back(effectsPreset());
+  t.push_back(onOff("shadows", "Effects",
+                    "Shadows: ray-traced shadow rays at the G-buffer surface and at reflection, refraction and "
+                    "indirect hits (raster: shadow maps); off: every light reaches what faces it, no shadow ray",
+                    &RenderSettings::shadows));
+  t.push_back(onOff("reflections", "Effects",
+                    "Ray-traced reflections and refractions (rt-specular); off: mirrors, glossy surfaces and glass "
+                    "take the environment approximation",
+                    &RenderSettings::reflections));
   t.push_back(number("max-depth", SettingKind::Integer, "Effects",
                      "Surface interactions along a path after the camera ray: the path tracer's vertices, and the "
                      "G-buffer surface plus up to N-1 (at most 8) reflection/refraction rays in hybrid mode",
@@ -214,6 +292,7 @@ std::vector<Setting> makeTable() {
 std::string Setting::defaultText() const { return get(RenderSettings{}); }
 
 std::string Setting::typeText() const {
+  if (!typeHint.empty()) return typeHint;
   switch (kind) {
     case SettingKind::Switch:
     case SettingKind::Choice: {

@@ -36,6 +36,11 @@ struct Setting {
   bool restarts = true;
   // A setting that may not be given together with this one (both fix the same thing).
   std::string excludes;
+  // A preset sets several other settings (--effects): every command applies it before the settings
+  // it sets, so an explicit option overrides it whatever its place on the command line.
+  bool preset = false;
+  // What --help shows as the type in place of the choices ("all|shadows|mirrors|none|LIST").
+  std::string typeHint;
   // The value as text ("on", "quarter", "0.5"), and setting it from text (already range-checked or
   // not: set() checks and fails with a one-line cause).
   std::function<std::string(const RenderSettings&)> get;
@@ -46,6 +51,12 @@ struct Setting {
   // "on|off", "aces|neutral", "0..8", "-1..1": what --help shows as the option's type.
   std::string typeText() const;
 };
+
+// `--effects`: the effects of the hybrid frame by name, each one switch of the table ("gi" is
+// --indirect), in the order a list of them is written.
+inline constexpr const char* kEffectNames[] = {"shadows", "reflections", "ao", "gi", "denoise", "taa"};
+// `--effects mirrors` traces the G-buffer surface and up to 4 mirror bounces: --max-depth 5.
+inline constexpr uint32_t kMirrorsMaxDepth = 5;
 
 const std::vector<Setting>& settingsTable();
 const Setting* findSetting(std::string_view name);

@@ -16,6 +16,16 @@ Result<Scene> makeBuiltinScene(std::string_view name);
 // The bare names (no "builtin:" and no parameters), in the order help text lists them.
 std::vector<std::string> builtinSceneNames();
 
+// Built-in models, for scene files to compose ("path": "builtin:teapot:mirror"): one object and its
+// material, no light, camera or environment. NAME[:MATERIAL] with NAME teapot (0.8 m tall, 3,968
+// triangles), bunny (1 m, 14,696 triangles), sphere (analytic, 1 m across) or floor (20 m square)
+// standing on y = 0 about the origin, and MATERIAL white (the default; the floor's grey), grey,
+// red, green, blue (diffuse) or mirror. Rendered alone, a model gets a file's defaults (a sun, the
+// sky, a framing camera: docs/scene-format.md). Unknown names or materials: ExitCode::BadInput.
+std::vector<std::string> builtinModelNames();
+bool isBuiltinModel(std::string_view name);
+Result<Scene> makeBuiltinModel(std::string_view name);
+
 // The Cornell box from Cornell University's measured data, millimetres * 0.01 (room ~5.5 m),
 // with a mirror-like tall block and a sphere light under the ceiling.
 Scene makeCornellBox();

@@ -87,7 +87,12 @@ Result<Scene> loadModelFile(const fs::path& path) {
 }
 
 Result<Scene> loadScene(const std::string& nameOrPath) {
-  if (nameOrPath.rfind(kBuiltinPrefix, 0) == 0) return makeBuiltinScene(nameOrPath);
+  if (nameOrPath.rfind(kBuiltinPrefix, 0) == 0) {
+    if (!isBuiltinModel(nameOrPath)) return makeBuiltinScene(nameOrPath);
+    Result<Scene> model = makeBuiltinModel(nameOrPath);  // a model alone: completed as a file is
+    if (model) applyDefaults(*model);
+    return model;
+  }
   const fs::path path(nameOrPath);
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) {

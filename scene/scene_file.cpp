@@ -157,7 +157,7 @@ Status readModel(const Reader& r, const json& model, const std::string& path, Sc
 
   Result<Scene> loaded = Error{};
   if (ref.rfind("builtin:", 0) == 0) {
-    loaded = makeBuiltinScene(ref);
+    loaded = isBuiltinModel(ref) ? makeBuiltinModel(ref) : makeBuiltinScene(ref);
   } else {
     Result<fs::path> file = resolveRelativePath(r.dir(), ref, fmt::format("{}: {}", r.file(), child(path, "path")));
     if (!file) return file.error();

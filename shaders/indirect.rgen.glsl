@@ -105,7 +105,7 @@ void main() {
       vec3 p = origin + t * dir;
       float invPdf;
       uint i = selectLight(p, -dir, rng, invPdf);
-      if (i < frame.lightCount) lightVisibility(i, p, -dir, rng);
+      if (i < frame.lightCount && shadowRaysOn()) lightVisibility(i, p, -dir, rng);
     }
   }
   imageStore(outHit, px, vec4(result));

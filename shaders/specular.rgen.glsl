@@ -29,7 +29,9 @@
 // traced rays (RenderSettings::maxDepth): Fresnel between reflection and refraction (chosen stochastically, so the
 // estimate is unbiased and converges over frames), total internal reflection, η by side,
 // Beer–Lambert absorption inside volumes, thin walls. Every hit is shaded by shadeSurface(), the
-// lighting pass's own function, with shadow rays. Output: the specular radiance the lighting pass
+// lighting pass's own function, with shadow rays — or, with --shadows off (--effects mirrors,
+// frame.effectFlags without kEffectShadows), with none: each light lights what it faces, as in the
+// classic mirror-reflection samples (lib/shading.glsl shadeLight() never calls lightVisibility()). Output: the specular radiance the lighting pass
 // adds (the diffuse layer of the first surface is the lighting pass's).
 // Compaction (SPECULAR_QUEUE, where the device launches rays indirectly): the pass traces every
 // path's first segment, then appends the paths that go on to a queue instead of looping on, and
@@ -115,7 +117,7 @@ void main() {
   hitT = floatBitsToUint(-1.0);
   traceRayEXT(tlas, rayFlags(), kMaskVisible | kMaskCastsShadow, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
   float t = uintBitsToFloat(hitT);
-  if (t >= 0.0) {
+  if (t >= 0.0 && shadowRaysOn()) {  // --shadows off: the pass traces no shadow ray at its hits
     vec3 p = origin + t * dir;
     if (glossy || frame.manyLights != 0u) {  // shadeDirect()'s one pick (lib/shading.glsl)
       float invPdf;

@@ -148,11 +148,14 @@ struct SpecularQueue {
 // queue at this size (indirect ray launches; pixel indices that fit a path's tag).
 bool useSpecularQueue(const rhi::Context& ctx, const RenderSettings& settings, VkExtent2D size);
 // `probes`: the probes light the diffuse part of the loop's hits (else ambient and the SH environment).
+// `halfRateFill`: some surface is glossy enough to be traced at half rate, so "rt-specular-fill"
+// fills the untraced half (false: no surface is, and the fill is not recorded).
 // `queue`: compact the paths that go on into it ("rt-specular-continue"); null: every pixel's loop
 // runs in its own invocation of "rt-specular" (devices without indirect launches). The image is the
 // same either way.
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t bounces,
-                                 uint32_t lightsPerHit, const ProbeLookup& probes = {}, SpecularQueue* queue = nullptr);
+                                 uint32_t lightsPerHit, bool halfRateFill, const ProbeLookup& probes = {},
+                                 SpecularQueue* queue = nullptr);
 // Denoised by denoiseRadiance() (render/passes/denoise.h).
 
 // Ambient occlusion (R16F array, 1 unoccluded), 1 sample per pixel; 1 everywhere when

@@ -1,6 +1,7 @@
 // Pass 4: ray-traced reflections and refractions (the raygen bounce loop); denoised by SVGF
 // (denoise_svgf.cpp). Rough glossy reflections trace half the pixels per frame in a checkerboard
-// (lib/specular_weight.glsl); "rt-specular-fill" fills the other half from their neighbours, in place.
+// (lib/specular_weight.glsl); "rt-specular-fill" fills the other half from their neighbours, in place
+// (recorded only where some surface is that rough: Renderer::Impl::specularFillOn).
 // Where the device launches rays indirectly, the paths that go on after their first segment are
 // compacted into a queue and traced on by "rt-specular-continue", one dense invocation per path
 // (shaders/specular.rgen.glsl, docs/techniques.md §12).
@@ -51,7 +52,8 @@ bool useSpecularQueue(const rhi::Context& ctx, const RenderSettings& settings, V
 }
 
 graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb, uint32_t bounces,
-                                 uint32_t lightsPerHit, const ProbeLookup& probes, SpecularQueue* queue) {
+                                 uint32_t lightsPerHit, bool halfRateFill, const ProbeLookup& probes,
+                                 SpecularQueue* queue) {
   graph::ImageHandle out =
       graph.createImage("specular-raw",
                         {kRadianceFormat, in.size.width, in.size.height, 1,
@@ -117,6 +119,7 @@ graph::ImageHandle traceSpecular(graph::RenderGraph& graph, const FrameInputs& i
           next.traceIndirect(pc.cmd, pc.buffer(length).address());
         });
   }
+  if (!halfRateFill) return out;  // nothing traced at half rate: nothing to fill
   const rhi::Pipeline& fill = in.pipelines.compute("specular_fill.comp");
   graph.addPass(
       "rt-specular-fill",

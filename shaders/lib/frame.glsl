@@ -13,4 +13,7 @@ LightRecord loadLight(uint i) {
   return l;
 }
 vec3 exposedEmission(MaterialRecord m) { return m.emissive * frame.exposure; }
+// Whether lights cast shadows (shared/types.h kEffectShadows): off, a pass's lightVisibility() is
+// never called (lib/shading.glsl, lib/one_light.glsl) and the raw twins trace no shadow rays.
+bool shadowRaysOn() { return (frame.effectFlags & kEffectShadows) != 0u; }
 #endif

@@ -15,7 +15,7 @@ vec3 directFromOneLight(SurfaceBsdf bsdf, vec3 p, vec3 n, vec3 ng, vec3 v, bool 
   vec3 l;
   float dist;
   vec3 incident = lightIncident(light, p, l, dist);
-  if (lightVisibility(chosen, p, ng, rng) == 0.0) return vec3(0.0);
+  if (shadowRaysOn() && lightVisibility(chosen, p, ng, rng) == 0.0) return vec3(0.0);  // --shadows off: none
   float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
   if (tracedHit && light.type != kLightDirectional) bsdf.f0 = bsdf.f90 = vec3(0.0);
   return evalBsdfCos(bsdf, n, v, l, 0.5 * widen) * incident * invPdf;

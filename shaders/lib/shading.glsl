@@ -146,6 +146,8 @@ vec3 shadeLight(ShadingInput s, ShadingTerms t, uint i, inout uint rng) {
     skipLightVisibility(rng);
     return vec3(0.0);
   }
+  // --shadows off (--effects mirrors): no shadow ray, every light reaches what it faces.
+  if (!shadowRaysOn()) return f * incident;
   float visibility = lightVisibility(i, s.p, s.ng, rng);
   if (visibility <= 0.0) return vec3(0.0);
   return f * incident * visibility;

@@ -14,19 +14,20 @@ bool tracedSpecular(float roughness, float transmission) {
 }
 
 // How much of a G-buffer surface's specular light the specular pass traces (mirror, glass, glossy:
-// 1; past the glossy threshold it fades to 0); the rest comes from light sources and the
+// 1; past the glossy threshold it fades to 0; 0 everywhere with --reflections off); the rest comes from light sources and the
 // environment approximation.
 float tracedSpecularWeight(float roughness, float transmission) {
+  if ((frame.effectFlags & kEffectReflections) == 0u) return 0.0;  // --reflections off: nothing is traced
   if (transmission > 0.0 || roughness <= frame.mirrorRoughness) return 1.0;
   return 1.0 - clamp((roughness - frame.glossyThreshold) / kGlossyBlend, 0.0, 1.0);
 }
 
-// Glossy first reflections at least this rough are traced on half the pixels each frame, in a
-// checkerboard that alternates with the frame (docs/techniques.md §13); the specular fill pass gives the
-// other half the mean of their traced neighbours. Their lobe already blurs the reflection over more
-// than the pixel's footprint at the distances that matter, and SVGF's temporal accumulation sees
-// every pixel traced every other frame. Smoother lobes (and mirrors, glass) trace at every pixel.
-const float kHalfRateRoughness = 0.2;
+// Glossy first reflections at least kHalfRateRoughness rough (shared/types.h) are traced on half
+// the pixels each frame, in a checkerboard that alternates with the frame (docs/techniques.md §13);
+// the specular fill pass gives the other half the mean of their traced neighbours. Their lobe
+// already blurs the reflection over more than the pixel's footprint at the distances that matter,
+// and SVGF's temporal accumulation sees every pixel traced every other frame. Smoother lobes (and
+// mirrors, glass) trace at every pixel.
 
 // A G-buffer surface whose glossy reflection is traced at half rate.
 bool halfRateGlossy(float depth, vec4 mat) {

@@ -46,6 +46,10 @@ RAYSTER_CONST uint kSpecularQueueGlossy = 0x80000000u;
 // the environment approximation over this much roughness (lib/specular_weight.glsl); past
 // threshold + blend the specular pass traces nothing (render/gpu_scene.h SpecularSurfaces).
 RAYSTER_CONST float kGlossyBlend = 0.1;
+// Glossy first reflections at least this rough are traced on half the pixels each frame, the other
+// half filled by rt-specular-fill (lib/specular_weight.glsl halfRateGlossy()); a scene with no
+// opaque surface in that range records no fill pass (render/renderer_impl.h specularFillOn()).
+RAYSTER_CONST float kHalfRateRoughness = 0.2;
 RAYSTER_CONST uint kDfgSize = 32u;  // split-sum DFG table, kDfgSize² texels (render/dfg.h)
 RAYSTER_CONST uint kBackgroundId = 0xFFFFFFFFu;
 RAYSTER_CONST uint kNoTexture = 0xFFFFFFFFu;
@@ -85,10 +89,20 @@ RAYSTER_CONST uint kEffectIndirectQuarter = 8u;
 // The probes (--gi probes) also give the untraced specular light: their irradiance about the
 // mirror direction / π (lighting's indirectSpecularTex), in place of the environment's.
 RAYSTER_CONST uint kEffectIndirectSpecular = 16u;
+// Lights cast shadows (--shadows, on by default): the shadow layers at the G-buffer surface and the
+// shadow rays at every hit of the bounce loops (reflections, indirect, probes). Unset
+// (--effects mirrors): every light reaches every point it faces, and no pass traces a shadow ray
+// (lib/frame.glsl shadowRaysOn(), lib/shading.glsl shadeLight()).
+RAYSTER_CONST uint kEffectShadows = 32u;
+// Reflections and refractions are traced (--reflections, on by default). Unset (--effects shadows):
+// no surface's specular light is traced (lib/specular_weight.glsl tracedSpecularWeight() is 0), so
+// mirrors and glass take the environment approximation as rough surfaces do, and rt-specular is
+// not recorded.
+RAYSTER_CONST uint kEffectReflections = 64u;
 // With kEffectAo: rt-ao traces half the pixels per frame, a checkerboard alternating with the frame
 // (a half-width launch, lib/ao_ray.glsl), and rt-ao-fill gives the others the mean of their
 // 4-neighbours on the same surface (--ao-rate half).
-RAYSTER_CONST uint kEffectAoHalf = 32u;
+RAYSTER_CONST uint kEffectAoHalf = 128u;
 // Levels of the prefiltered environment (render/gpu_environment.cpp): level k (1..N) is GGX
 // roughness k/N, each kPrefilteredWidth × kPrefilteredWidth/2, stacked vertically in one image.
 RAYSTER_CONST uint kPrefilteredLevels = 6u;

@@ -234,3 +234,39 @@ TEST(BuiltinScenes, LightsSceneHasTheRequestedLights) {
   EXPECT_FALSE(rayster::scene::makeBuiltinScene("lights:0").ok());
   EXPECT_FALSE(rayster::scene::makeBuiltinScene("lights:x").ok());
 }
+
+namespace rayster::scene {
+namespace {
+
+// Built-in models (scene/builtin_models.cpp): one object and its material for scene files to
+// compose, no light or camera of its own; rendered alone, completed as a file is.
+TEST(BuiltinScenes, ModelsAreOneObjectWithANamedMaterial) {
+  Result<Scene> teapot = makeBuiltinModel("builtin:teapot:mirror");
+  ASSERT_TRUE(teapot.ok()) << teapot.error().message;
+  ASSERT_EQ(teapot->meshes.size(), 1u);
+  EXPECT_EQ(teapot->triangleCount(), 3968u);
+  EXPECT_TRUE(teapot->lights.empty());
+  EXPECT_TRUE(teapot->cameras.empty());
+  ASSERT_EQ(teapot->materials.size(), 1u);
+  EXPECT_EQ(teapot->materials[0].metallic, 1.0f);
+  EXPECT_EQ(teapot->materials[0].roughness, 0.0f);
+  Result<Scene> bunny = makeBuiltinModel("bunny");
+  ASSERT_TRUE(bunny.ok());
+  EXPECT_EQ(bunny->triangleCount(), 14696u);
+  EXPECT_EQ(bunny->materials[0].name, "white");
+  Result<Scene> sphere = makeBuiltinModel("builtin:sphere:red");
+  ASSERT_TRUE(sphere.ok());
+  ASSERT_EQ(sphere->meshes.size(), 1u);
+  EXPECT_EQ(sphere->meshes[0].spheres.size(), 1u);
+  EXPECT_TRUE(isBuiltinModel("builtin:floor:grey"));
+  EXPECT_FALSE(isBuiltinModel("builtin:whitted"));
+
+  Result<Scene> plaid = makeBuiltinModel("builtin:bunny:plaid");
+  ASSERT_FALSE(plaid.ok());
+  EXPECT_EQ(plaid.error().code, ExitCode::BadInput);
+  EXPECT_EQ(plaid.error().message,
+            "builtin:bunny: unknown material 'plaid' (available: white, grey, red, green, blue, mirror)");
+}
+
+}  // namespace
+}  // namespace rayster::scene
