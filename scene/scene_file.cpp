@@ -366,9 +366,10 @@ Result<json> parseJson(const fs::path& path) {
   }
   try {
     return json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
     // e.what() is "[json.exception.parse_error.101] parse error at line 3, column 1: ..."; keep the
-    // human part, which names the position.
+    // human part, which names the position. A number too large for a double is out_of_range.406
+    // ("number overflow parsing '1e400'"), not a parse_error: every json::exception is bad input.
     std::string what = e.what();
     if (const size_t bracket = what.find("] "); what.rfind("[json.", 0) == 0 && bracket != std::string::npos)
       what = what.substr(bracket + 2);

@@ -33,8 +33,17 @@ layout(set = 0, binding = 14) uniform usampler2D layersTex;  // encodeLayers(): 
 
 ivec2 gPixel;
 
+// An effect that records no pass leaves its input bound to a one-texel neutral image
+// (render/neutral_images.h): read those at texel 0, never outside the image (an out-of-bounds
+// texelFetch is undefined: 0 on lavapipe, which made --ao off drop all ambient and environment light).
+ivec2 within(ivec2 size, ivec2 px) { return min(px, size - 1); }
+vec4 fetch(sampler2D t, ivec2 px) { return texelFetch(t, within(textureSize(t, 0), px), 0); }
+vec4 fetchLayer(sampler2DArray t, ivec2 px, int layer) {
+  return texelFetch(t, ivec3(within(textureSize(t, 0).xy, px), layer), 0);
+}
+
 float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
-  return i < frame.shadowLightCount ? texelFetch(visibilityTex, ivec3(gPixel, i), 0).r : 1.0;
+  return i < frame.shadowLightCount ? fetchLayer(visibilityTex, gPixel, int(i)).r : 1.0;
 }
 void skipLightVisibility(inout uint rng) {}
 
@@ -82,18 +91,18 @@ void main() {
   s.ior = emissive.a;
   s.specular = decodeSpecular(texelFetch(specularGbufTex, px, 0));
   s.tracedWeight = tracedSpecularWeight(s.roughness, s.transmission);
-  s.envOcclusion = texelFetch(aoTex, ivec3(px, int(frame.aoLayer)), 0).r;
+  s.envOcclusion = fetchLayer(aoTex, px, int(frame.aoLayer)).r;
   s.useIndirect = (frame.effectFlags & kEffectIndirect) != 0u;
-  s.indirect = s.useIndirect ? texelFetch(indirectTex, px, 0).rgb : vec3(0.0);
+  s.indirect = s.useIndirect ? fetch(indirectTex, px).rgb : vec3(0.0);
   s.sunHighlights = true;
   s.highlightWiden = s.tracedWeight > 0.0 ? normalSpread(px, s.n) : 0.0;  // used for the traced share only
   s.useIndirectSpecular = (frame.effectFlags & kEffectIndirectSpecular) != 0u;
-  s.indirectSpecular = s.useIndirectSpecular ? texelFetch(indirectSpecularTex, px, 0).rgb : vec3(0.0);
+  s.indirectSpecular = s.useIndirectSpecular ? fetch(indirectSpecularTex, px).rgb : vec3(0.0);
   vec4 coat, sheen;
   decodeLayers(texelFetch(layersTex, px, 0), coat, sheen);
   setLayers(s, coat, sheen);
   uint rng = 0u;  // visibility comes from the shadow image: no random numbers needed here
-  vec3 traced = texelFetch(specularTex, px, 0).rgb;
+  vec3 traced = fetch(specularTex, px).rgb;
   // Glass writes radiance; opaque surfaces the lobe average, remodulated by the lobe's albedo.
   if (s.transmission <= 0.0) {
     SurfaceBsdf bsdf = makeBsdf(s.baseColor, s.metallic, s.roughness, s.specular, s.ior);
@@ -101,6 +110,6 @@ void main() {
   }
   bool many = frame.manyLights != 0u;
   vec3 radiance = shadeSurface(s, !many, rng) + s.tracedWeight * underLayers(s) * traced;
-  if (many) radiance += texelFetch(directTex, px, 0).rgb;
+  if (many) radiance += fetch(directTex, px).rgb;
   imageStore(outColor, px, vec4(radiance, 1.0));
 }

@@ -126,6 +126,22 @@ TEST(Ao, SameWithOrWithoutShadowLayersAndOneWhenOff) {
       ASSERT_EQ(off[name].rgba[i], 1.0f) << name << " texel " << i / 4;
 }
 
+TEST(Ao, OffLeavesAnUnoccludedPlaneAsLitAsOn) {
+  // A white plane under a uniform environment has nothing to occlude it: AO on or off, it returns its
+  // albedo (1: the diffuse layer plus the Fresnel share). AO off binds a one-texel neutral image; a
+  // lighting pass reading it at the pixel read outside it and lost the environment's specular share.
+  auto dir = testDir();
+  auto scene = writeSceneFile(dir, {floorQuad(-50, 50, -50, 50, "white")}, true, {0, 3, 4}, {0, 0, 0});
+  auto on = renderAovs(dir, scene.string(), "--frames 4 --ao on", "ao-denoised");
+  auto off = renderAovs(dir, scene.string(), "--frames 4 --ao off", "ao-denoised");
+  EXPECT_GT(meanChannel(on["ao-denoised"], 0), 0.99) << "nothing occludes the plane";
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(meanChannel(on["hdr"], c), 1.0, 0.02) << "AO on, channel " << c;
+    EXPECT_NEAR(meanChannel(off["hdr"], c), 1.0, 0.02) << "AO off, channel " << c;
+    EXPECT_NEAR(meanChannel(off["hdr"], c), meanChannel(on["hdr"], c), 0.01) << "channel " << c;
+  }
+}
+
 TEST(Ao, FloorBesideAWallIsHalfOccluded) {
   // An (almost) infinite wall at x = 0 over a floor at x > 0: with an unlimited radius, half of the
   // cosine lobe of every floor point faces the wall (and of every wall point, the floor): AO → 0.5.

@@ -201,6 +201,12 @@ TEST_F(SceneFileTest, RejectsTruncatedJsonWithItsPosition) {
   expectRejected("garbage", "invalid JSON");
 }
 
+TEST_F(SceneFileTest, RejectsNumbersTooLargeForADouble) {
+  // nlohmann reports these as out_of_range, not parse_error; found by fuzz_scene_file.
+  expectRejected(R"({"models": [{"path": "tri.obj"}], "ambient": [1e400, 0, 0]})", "number overflow parsing '1e400'");
+  expectRejected("3330000000000000000000001623e340224473490069{}", "scene.json: invalid JSON");
+}
+
 TEST_F(SceneFileTest, RejectsWrongTypesNamingTheJsonPath) {
   expectRejected(R"({"models": [{"path": "tri.obj"}, {"path": "tri.obj"}, {"path": "tri.obj", "scale": "big"}]})",
                  "scene.json: models[2].scale must be a number or an array of 3 numbers");

@@ -11,6 +11,7 @@ export __GL_SHADER_DISK_CACHE_PATH=/tmp/nvcache
 exec >"$O" 2>&1
 date
 dist/rayster-gpu/run.sh info
+dist/rayster-gpu/run.sh bench builtin:whitted --size 1920x1080 --warmup 64 --frames 300 | grep frame  # clocks up
 for scene in shadows mirrors; do
   for effects in shadows mirrors; do
     for raw in "" --raw-rays; do
@@ -26,5 +27,13 @@ for scene in shadows mirrors; do
   echo "== $scene-scene-all"
   dist/rayster-gpu/run.sh bench bench/scenes/effects-$scene.json --size 1920x1080 --warmup 64 --frames 256 \
     --effects all --json $OUT/$scene-scene-all.json
+done
+# The mirrors preset with the bounce loop in place (no queue), and the whitted frame of this tree.
+echo "== mirrors-scene-mirrors-noqueue"
+dist/rayster-gpu/run.sh bench bench/scenes/effects-mirrors.json --size 1920x1080 --warmup 64 --frames 256 \
+  --effects mirrors --specular-queue off --json $OUT/mirrors-scene-mirrors-noqueue.json
+for s in whitted cornell; do
+  echo "== $s"
+  dist/rayster-gpu/run.sh bench builtin:$s --size 1920x1080 --warmup 64 --frames 256 --json $OUT/$s.json
 done
 date
