@@ -151,7 +151,10 @@ void uploadMaterials(rhi::Context& ctx, const scene::Scene& scene, GpuScene& gs,
   // The layer rows first: each layered material's record points at its row.
   std::vector<gpu::MaterialLayers> layerRows;
   std::vector<int32_t> layerOf;
+  gs.layeredGBuffer = false;
   for (const scene::Material& m : scene.materials) {
+    gs.layeredGBuffer =
+        gs.layeredGBuffer || m.clearcoat > 0.0f || std::max({m.sheenColor.r, m.sheenColor.g, m.sheenColor.b}) > 0.0f;
     layerOf.push_back(m.layered() ? int32_t(layerRows.size()) : -1);
     if (!m.layered()) continue;
     gpu::MaterialLayers l{};

@@ -84,6 +84,9 @@ struct GpuScene {
   std::vector<int32_t> instanceRowOf;
   bool instancesDynamic = false;  // animated, or edited since upload: the instance table is rewritten per frame
   uint32_t lightCount = 0;
+  // Some material has a clear coat or a sheen: the G-buffer's layers target is written (else it is
+  // a one-texel zero image, and 32 MiB at 1080p are not allocated).
+  bool layeredGBuffer = false;
   bool anyHit = false;  // some geometry is not opaque (alpha tests, back-face rejection): rays may not be forced opaque
   uint64_t triangleCount = 0;  // over all instances
   // The scene's world bounds at upload (rest pose): scene::Scene::bounds() visits every vertex of

@@ -16,8 +16,12 @@ namespace rayster::render {
 graph::ImageHandle traceSkyVisibility(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb);
 graph::ImageHandle drawProbeView(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
                                  graph::ImageHandle hdr, const ProbeLookup& probes);
-graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                        const ProbeFrame& frame, ProbeLookup& lookup);
+// Probe trace, classification and atlas updates; then the G-buffer's lookup (gi-probe-sample: the
+// irradiance image it returns, and lookup.specularIrradiance).
+void traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const ProbeFrame& frame,
+                          ProbeLookup& lookup);
+graph::ImageHandle sampleProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
+                                         ProbeLookup& lookup);
 
 namespace {
 
@@ -94,7 +98,10 @@ FrameStats Renderer::Impl::renderFrame(const FrameControl& control) {
       updateTlas(graph, in, gpu.tlas.prepare(gpu.tlasInstances));
   }
 
-  const GBuffer gb = out.primaryUsed == Primary::Traced ? traceGBuffer(graph, in) : rasterGBuffer(graph, in);
+  // Without clear coats and sheens the G-buffer has no layers target: lighting reads zeros.
+  const graph::ImageHandle zeroLayers = gpu.layeredGBuffer ? graph::ImageHandle{} : neutral.layers(graph);
+  const GBuffer gb =
+      out.primaryUsed == Primary::Traced ? traceGBuffer(graph, in, zeroLayers) : rasterGBuffer(graph, in, zeroLayers);
   FrameImages images;
   if (rasterMode) {
     // Shadow maps look from the lights where they are now (lights on animated nodes move).
@@ -276,13 +283,11 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
   // With --gi path they run too: the one-bounce rays' hits take their irradiance (every later
   // bounce); the G-buffer's lookup (gi-probe-sample) is then unused, and the graph culls it.
   ProbeLookup probeLookup;
-  if (indirect) {
-    const graph::ImageHandle e = traceProbeIrradiance(
-        graph, in, gb,
+  if (indirect)
+    traceProbeIrradiance(
+        graph, in,
         {frameIndex, s.seed, exposure.ratio(), moving, camera.position, probeCascadesSetting(s), &probeCascades},
         probeLookup);
-    if (probes) o.indirectRaw = o.indirect = e;
-  }
   if (specularPass) {
     specularQueue.ctx = &ctx;
     o.specularRaw = traceSpecular(graph, in, gb, specularBounces(s), shadowRaysPerHit(), specularFillOn(s), probeLookup,
@@ -294,6 +299,7 @@ FrameImages Renderer::Impl::recordHybrid(graph::RenderGraph& graph, const FrameI
     o.indirectRaw = traceIndirect(graph, in, gb, surface.current, indirectQuarter(s), probeLookup);
     o.indirect = svgf("indirect", o.indirectRaw);
   }
+  if (indirect && probes) o.indirectRaw = o.indirect = sampleProbeIrradiance(graph, in, gb, probeLookup);
   o.hdr = shadeLighting(
       graph, in, gb,
       {o.shadow, o.specular, o.ao, o.indirect, direct, probes ? probeLookup.specularIrradiance : graph::ImageHandle{}});

@@ -1,5 +1,6 @@
 #version 460
 // variant: raw_primary.rgen RAW_RATE
+// variant: gbuffer_flat.rgen NO_LAYERS
 #extension GL_EXT_ray_tracing : require
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
@@ -19,6 +20,7 @@
 // RAW_RATE (raw_primary.rgen, the raw ray rate of gbuffer-traced, rayster bench --raw-rays): the
 // same primary rays, with a closest-hit shader that only marks the hit (raw.rchit: 2) and a trivial
 // miss (shadow.rmiss: 1), and one 16-bit write per pixel instead of the G-buffer's seven.
+// NO_LAYERS (gbuffer_flat.rgen): for scenes without a clear coat or sheen, no layers target.
 layout(set = 0, binding = 1) uniform accelerationStructureEXT tlas;
 #ifdef RAW_RATE
 layout(set = 0, binding = 2, r16f) uniform writeonly image2D outHit;
@@ -33,7 +35,9 @@ layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D outEmissive;
 layout(set = 0, binding = 7, r32ui) uniform writeonly uimage2D outId;
 layout(set = 0, binding = 8, rg16f) uniform writeonly image2D outMotion;
 layout(set = 0, binding = 9, rgba8) uniform writeonly image2D outSpecular;
+#ifndef NO_LAYERS
 layout(set = 0, binding = 10, rgba32ui) uniform writeonly uimage2D outLayers;
+#endif
 
 layout(location = 0) rayPayloadEXT PrimaryPayload payload;
 #endif
@@ -74,7 +78,9 @@ void main() {
     imageStore(outId, px, uvec4(kBackgroundId));
     imageStore(outMotion, px, vec4(0.0));
     imageStore(outSpecular, px, vec4(0.0));
+#ifndef NO_LAYERS
     imageStore(outLayers, px, uvec4(0u));
+#endif
     return;
   }
 
@@ -91,7 +97,9 @@ void main() {
   imageStore(outMaterial, px, gb.material);
   imageStore(outEmissive, px, gb.emissive);
   imageStore(outSpecular, px, encodeSpecular(gb.specular));
+#ifndef NO_LAYERS
   imageStore(outLayers, px, encodeLayers(gb.coat, gb.sheen));
+#endif
   imageStore(outId, px, uvec4(payload.instance));
   InstanceRecord inst = Instances(frame.instances).i[payload.instance];
   GeometryRecord g = Geometries(frame.geometries).g[payload.geometry];

@@ -36,8 +36,10 @@ ivec2 gPixel;
 // An effect that records no pass leaves its input bound to a one-texel neutral image
 // (render/neutral_images.h): read those at texel 0, never outside the image (an out-of-bounds
 // texelFetch is undefined: 0 on lavapipe, which made --ao off drop all ambient and environment light).
+// The G-buffer's layers target is one too in a scene without a clear coat or sheen.
 ivec2 within(ivec2 size, ivec2 px) { return min(px, size - 1); }
 vec4 fetch(sampler2D t, ivec2 px) { return texelFetch(t, within(textureSize(t, 0), px), 0); }
+uvec4 fetch(usampler2D t, ivec2 px) { return texelFetch(t, within(textureSize(t, 0), px), 0); }
 vec4 fetchLayer(sampler2DArray t, ivec2 px, int layer) {
   return texelFetch(t, ivec3(within(textureSize(t, 0).xy, px), layer), 0);
 }
@@ -99,7 +101,7 @@ void main() {
   s.useIndirectSpecular = (frame.effectFlags & kEffectIndirectSpecular) != 0u;
   s.indirectSpecular = s.useIndirectSpecular ? fetch(indirectSpecularTex, px).rgb : vec3(0.0);
   vec4 coat, sheen;
-  decodeLayers(texelFetch(layersTex, px, 0), coat, sheen);
+  decodeLayers(fetch(layersTex, px), coat, sheen);  // a one-texel zero image without coats and sheens
   setLayers(s, coat, sheen);
   uint rng = 0u;  // visibility comes from the shadow image: no random numbers needed here
   vec3 traced = fetch(specularTex, px).rgb;

@@ -14,7 +14,9 @@ constexpr VkImageUsageFlags kTargetUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
 
 // Both producers create the shared targets with one description, so the transient pool hands the
 // same images to either.
-GBuffer createGBufferTargets(graph::RenderGraph& graph, VkExtent2D size, bool traced) {
+GBuffer createGBufferTargets(graph::RenderGraph& graph, const FrameInputs& in, bool traced,
+                             graph::ImageHandle zeroLayers) {
+  const VkExtent2D size = in.size;
   auto target = [&](const char* name, VkFormat format) {
     const bool light = std::string_view(name) == "gbuffer-emissive";  // emission is pre-exposed
     return graph.createImage(name, {format, size.width, size.height, 1, kTargetUsage}, light ? kRadianceImage : 0u);
@@ -34,7 +36,8 @@ GBuffer createGBufferTargets(graph::RenderGraph& graph, VkExtent2D size, bool tr
   gb.id = target("gbuffer-id", kIdFormat);
   gb.motion = target("gbuffer-motion", kMotionFormat);
   gb.specular = target("gbuffer-specular", kSpecularFormat);
-  gb.layers = target("gbuffer-layers", kLayersFormat);
+  gb.flatLayers = zeroLayers.valid() && !in.scene.layeredGBuffer;
+  gb.layers = gb.flatLayers ? zeroLayers : target("gbuffer-layers", kLayersFormat);
   return gb;
 }
 
@@ -66,8 +69,9 @@ void drawGBuffer(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer
       late ? "gbuffer-raster-late" : "gbuffer-raster",
       [&](graph::PassBuilder& b) {
         b.write(gb.depth, graph::Use::DepthAttachment);
-        for (auto h : {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion, gb.specular, gb.layers})
+        for (auto h : {gb.normals, gb.albedo, gb.material, gb.emissive, gb.id, gb.motion, gb.specular})
           b.write(h, graph::Use::ColorAttachment);
+        if (!gb.flatLayers) b.write(gb.layers, graph::Use::ColorAttachment);
         b.read(culled.commands, graph::Use::IndirectRead);
         b.read(culled.counts, graph::Use::IndirectRead);
         b.read(culled.drawIds, graph::Use::VertexShaderRead);
@@ -80,7 +84,9 @@ void drawGBuffer(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer
                                                 gb.id,      gb.motion, gb.specular, gb.layers};
         for (int i = 0; i < kTargets; ++i) {
           color[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-          color[i].imageView = pc.image(targets[i]).view();
+          // Flat layers: no attachment (a null view discards the fragment output, dynamic rendering).
+          const bool unused = gb.flatLayers && i == kTargets - 1;
+          color[i].imageView = unused ? VK_NULL_HANDLE : pc.image(targets[i]).view();
           color[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
           color[i].loadOp = load;
           color[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
@@ -126,8 +132,8 @@ void drawGBuffer(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer
 
 // Culling on: early cull, early draw (clear), depth pyramid, late cull, late draw (load). Off: one
 // cull pass that keeps every draw and one draw pass, as before culling existed.
-GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
-  GBuffer gb = createGBufferTargets(graph, in.size, false);
+GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle zeroLayers) {
+  GBuffer gb = createGBufferTargets(graph, in, false, zeroLayers);
   const CulledDraws culled = cullDraws(graph, in);
   drawGBuffer(graph, in, gb, culled, CullPhase::Early);
   if (in.scene.cull->enabled) {

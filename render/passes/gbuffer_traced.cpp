@@ -4,13 +4,16 @@
 
 namespace rayster::render {
 
-GBuffer createGBufferTargets(graph::RenderGraph& graph, VkExtent2D size, bool traced);
+GBuffer createGBufferTargets(graph::RenderGraph& graph, const FrameInputs& in, bool traced,
+                             graph::ImageHandle zeroLayers);
 
-GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
-  GBuffer gb = createGBufferTargets(graph, in.size, true);
-  const rhi::RayTracingPipeline& pipe = in.pipelines.rayTracing("gbuffer.rgen", [] {
+GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle zeroLayers) {
+  GBuffer gb = createGBufferTargets(graph, in, true, zeroLayers);
+  // Flat layers: the variant without the layers output (NO_LAYERS).
+  const char* raygen = gb.flatLayers ? "gbuffer_flat.rgen" : "gbuffer.rgen";
+  const rhi::RayTracingPipeline& pipe = in.pipelines.rayTracing(raygen, [raygen] {
     rhi::RayTracingPipelineDesc d;
-    d.raygen = "gbuffer.rgen";
+    d.raygen = raygen;
     d.miss = {"primary.rmiss"};
     d.hitGroups = radianceHitGroups();
     return d;
@@ -21,7 +24,8 @@ GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in) {
         b.pipeline(pipe).bind("tlas", in.tlas);
         b.bind("outDepth", gb.depth).bind("outNormals", gb.normals).bind("outAlbedo", gb.albedo);
         b.bind("outMaterial", gb.material).bind("outEmissive", gb.emissive).bind("outId", gb.id);
-        b.bind("outMotion", gb.motion).bind("outSpecular", gb.specular).bind("outLayers", gb.layers);
+        b.bind("outMotion", gb.motion).bind("outSpecular", gb.specular);
+        if (!gb.flatLayers) b.bind("outLayers", gb.layers);
         b.rays(uint64_t(in.size.width) * in.size.height, true);  // one primary ray per pixel, always traced
       },
       [&pipe, size = in.size](graph::PassContext& pc) { pipe.trace(pc.cmd, size.width, size.height); });

@@ -157,8 +157,8 @@ rhi::ImageDesc atlasDesc(const gpu::ProbeGrid& g, uint32_t interior, VkFormat fo
 
 }  // namespace
 
-graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
-                                        const ProbeFrame& frame, ProbeLookup& lookup) {
+void traceProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const ProbeFrame& frame,
+                          ProbeLookup& lookup) {
   gpu::ProbeGrid grid = fitProbeGrid(in.scene.bounds.min, in.scene.bounds.max, frame.eye, frame.cascades);
   const uint32_t probes = probeCount(grid);
   const auto irradiance =
@@ -288,6 +288,14 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
   for (glm::uvec2& w : grid.cascadeCells) w = {w.x & ~gpu::kProbeWindowMoved, w.y & 0x1ffu};  // and sees no probe fresh
   lookup = {irradiance.next, visibility.next, data.next, grid};
   lookup.grid.flags |= gpu::kProbeLookup;
+}
+
+// Recorded just before lighting, its one reader: its two full-size outputs then live from here to
+// lighting only, not through the reflection denoiser's peak of transient memory.
+graph::ImageHandle sampleProbeIrradiance(graph::RenderGraph& graph, const FrameInputs& in, const GBuffer& gb,
+                                         ProbeLookup& lookup) {
+  const gpu::ProbeGrid grid = lookup.grid;
+  const VkSampler linear = in.linear.handle();
   const graph::ImageHandle out =
       graph.createImage("gi-irradiance", {kRadianceFormat, in.size.width, in.size.height, 1, kUsage}, kRadianceImage);
   lookup.specularIrradiance = graph.createImage(
@@ -296,8 +304,8 @@ graph::ImageHandle traceProbeIrradiance(graph::RenderGraph& graph, const FrameIn
       "gi-probe-sample",
       [&](graph::PassBuilder& b) {
         b.pipeline(in.pipelines.compute("probe_sample.comp")).bind("depthTex", gb.depth).bind("normalTex", gb.normals);
-        b.bind("probeIrradianceTex", irradiance.next, linear).bind("probeVisibilityTex", visibility.next, linear);
-        b.bind("probeDataTex", data.next).bind("outIrradiance", out);
+        b.bind("probeIrradianceTex", lookup.irradiance, linear).bind("probeVisibilityTex", lookup.visibility, linear);
+        b.bind("probeDataTex", lookup.data).bind("outIrradiance", out);
         b.bind("outSpecularIrradiance", lookup.specularIrradiance);
       },
       [grid, size = in.size](graph::PassContext& pc) {

@@ -65,6 +65,8 @@ struct GBuffer {
   // RGBA32_UINT: clear coat (normal, factor, roughness) and sheen (colour, roughness), encodeLayers()
   // (lib/common.glsl); zero where a material has neither.
   graph::ImageHandle layers;
+  // No material has a coat or sheen: `layers` is the caller's one-texel zero image, written by no pass.
+  bool flatLayers = false;
   graph::ImageHandle id;  // R32_UINT instance row, kBackgroundId for sky
   // RG16F uvCurrent − uvPrevious (unjittered; docs/techniques.md §2): the history of a pixel is at
   // uv − motion. Camera and object motion for geometry; 0 on the background, whose (camera)
@@ -72,8 +74,10 @@ struct GBuffer {
   graph::ImageHandle motion;
 };
 
-GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in);
-GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in);
+// zeroLayers (optional): a one-texel RGBA32UI image of zeros (NeutralImages::layers) that stands in
+// for the layers target when no material of the scene has a clear coat or sheen.
+GBuffer rasterGBuffer(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle zeroLayers = {});
+GBuffer traceGBuffer(graph::RenderGraph& graph, const FrameInputs& in, graph::ImageHandle zeroLayers = {});
 
 // One visibility layer per shadowed light (R16F array), 1 sample per pixel, and `extraLayers` more
 // that other passes fill (the AO layer: traceAo into this image), so one denoiser run takes them all.

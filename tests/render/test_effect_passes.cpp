@@ -140,6 +140,22 @@ TEST_F(EffectPasses, AnEffectSwitchedOffRecordsNoPassAndNoImage) {
   EXPECT_FALSE(raw.hasPass("raw-rt-indirect"));
 }
 
+// The G-buffer's clear-coat/sheen target (RGBA32UI, 32 MiB at 1080p) exists only in a scene with a
+// coat or a sheen; elsewhere both producers leave it out and lighting reads a one-texel zero image.
+TEST_F(EffectPasses, OnlyACoatOrSheenAllocatesTheLayersTarget) {
+  const std::string layered =
+      (std::filesystem::path(RAYSTER_SOURCE_DIR) / "assets/corpus/features/materials.glb").string();
+  for (const char* primary : {"raster", "rt"}) {
+    const std::string args = std::string("--primary ") + primary;
+    const Listing flat = list("builtin:whitted", args);
+    EXPECT_FALSE(flat.images.count("gbuffer-layers")) << primary << ": whitted has no clear coat or sheen";
+    EXPECT_TRUE(flat.images.count("neutral-layers")) << primary;
+    const Listing coat = list(layered, args);
+    EXPECT_TRUE(coat.images.count("gbuffer-layers")) << primary << ": materials.glb has Clearcoat and Sheen";
+    EXPECT_EQ(coat.sizes.at("gbuffer-layers"), "48x32") << primary;
+  }
+}
+
 TEST_F(EffectPasses, DenoiseOffKeepsNoDenoiserPassOrHistory) {
   const Listing l = list("builtin:whitted", "--denoise off --gi path");
   EXPECT_FALSE(l.anyPass("temporal"));
