@@ -52,6 +52,7 @@ gpu::LightRecord toRecord(const scene::Light& l) {
   r.angularRadius = l.angularRadius;
   r.cosInner = std::cos(l.innerConeAngle);
   r.cosOuter = std::cos(l.outerConeAngle);
+  r.flags = l.visibleShape ? gpu::kLightVisibleShape : 0u;
   return r;
 }
 

@@ -78,6 +78,7 @@ Scene makeCornellBox() {
   light.radius = 0.3f;
   light.color = glm::vec3(1.0f, 0.85f, 0.7f);
   light.intensity = 12.0f;
+  light.visibleShape = true;  // the emissive sphere below
   scene.lights.push_back(light);
 
   // The visible light: radiance of a uniformly emitting sphere with radiant intensity I is

@@ -61,6 +61,7 @@ void addSphereLight(Scene& scene, std::string name, glm::vec3 position, float ra
   light.radius = radius;
   light.color = color;
   light.intensity = intensity;
+  light.visibleShape = true;  // the emissive sphere below
   scene.lights.push_back(light);
   // Radiance of a uniformly emitting sphere of radiant intensity I: L = I / (pi r^2), since its
   // projected area is pi r^2 from every direction. Same relation as the Cornell box light.

@@ -273,6 +273,9 @@ struct Light {
   float angularRadius = 0.0f;  // directional, radians
   float innerConeAngle = 0.0f, outerConeAngle = 0.7853982f;
   int32_t node = -1;  // an animated node it follows (at its origin, shining down its -Z); -1: fixed
+  // An emissive mesh of the scene shows it (the built-in sphere lights): rays that hit the mesh see
+  // the light, so its highlight on traced surfaces is theirs; otherwise lighting adds it.
+  bool visibleShape = false;
 };
 
 struct Camera {

@@ -3,8 +3,8 @@
 #define RAYSTER_BRDF_GLSL
 
 float ggxD(float nh, float a2) {
-  float d = nh * nh * (a2 - 1.0) + 1.0;
-  return a2 / (kPi * d * d);
+  float d = nh * nh * (a2 - 1.0) + 1.0;  // >= a2: 0 only for a perfect mirror (a2 = 0) at nh = 1
+  return a2 / (kPi * max(d * d, 1e-30));  // there 0 (the delta lobe no light direction hits), not 0/0
 }
 // Height-correlated Smith visibility term V = G / (4 n·l n·v) (Heitz 2014).
 float smithV(float nl, float nv, float a2) {

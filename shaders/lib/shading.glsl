@@ -35,9 +35,10 @@ struct ShadingInput {
   vec3 indirect;       // irradiance E of the diffuse indirect light, when useIndirect
   bool useIndirectSpecular;  // the untraced specular light is indirectSpecular / π (probes), not the environment's
   vec3 indirectSpecular;     // irradiance E about the mirror direction reflect(−v, n)
-  // The traced share's highlight of sun lights, whose disks no traced ray sees (their rays miss to
-  // the environment), added here: the G-buffer's surfaces (lighting, direct.rgen); not the bounce
-  // loop's hits, where it would cost a shadow ray per mirror hit.
+  // The traced share's highlight of lights no traced ray can see — suns (their rays miss to the
+  // environment) and every light without a visible shape (kLightVisibleShape: punctual lights of
+  // glTF files and scene files) — added here: the G-buffer's surfaces (lighting, direct.rgen); not
+  // the bounce loop's hits, where it would cost a shadow ray per mirror hit.
   bool sunHighlights;
   // And how much wider than the surface's own roughness that highlight is drawn (a GGX α added):
   // half the angle the shading normal turns across a pixel, so a highlight smaller than a pixel
@@ -123,12 +124,13 @@ vec3 shadeLight(ShadingInput s, ShadingTerms t, uint i, inout uint rng) {
   float dist;
   vec3 incident = lightIncident(light, s.p, l, dist);
   if (all(equal(incident, vec3(0.0)))) return vec3(0.0);
-  // The traced reflection already sees the light's visible shape: only the diffuse layer for its share.
+  // A traced reflection sees a light's visible shape: for its share only the diffuse layer here, and
+  // the highlight of a light it cannot see (sunHighlights).
   float nl = max(dot(s.n, l), 0.0);
   vec3 f = t.w * (1.0 - t.fvDiffuse) * t.bsdf.diffuse / kPi * nl;
   float widen = light.type == kLightDirectional ? light.angularRadius : light.radius / max(dist, 1e-3);
   if (t.w < 1.0) f += (1.0 - t.w) * evalBsdfCos(t.bsdf, s.n, s.v, l, 0.5 * widen);
-  if (t.w > 0.0 && s.sunHighlights && light.type == kLightDirectional)
+  if (t.w > 0.0 && s.sunHighlights && (light.flags & kLightVisibleShape) == 0u)
     f += t.w * evalSpecularCos(t.bsdf, s.n, s.v, l, 0.5 * widen + s.highlightWiden);
   // The layers, as lib/layers.glsl's evalLayeredCos stacks them: sheen on the base, the coat on
   // both. The coat's lobe is never traced: all of it is here, its highlight widened by the light.

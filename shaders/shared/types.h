@@ -26,6 +26,9 @@ RAYSTER_CONST uint kMaskVisible = 0x02u;
 RAYSTER_CONST uint kLightPoint = 0u;  // a sphere light when radius > 0
 RAYSTER_CONST uint kLightSpot = 1u;
 RAYSTER_CONST uint kLightDirectional = 2u;
+// LightRecord::flags: an emissive mesh in the scene shows the light (the built-in scenes' sphere
+// lights), so traced rays see its highlight; every other light has no shape any ray can hit.
+RAYSTER_CONST uint kLightVisibleShape = 1u;
 
 RAYSTER_CONST uint kMaxShadowLights = 8u;  // one visibility layer each
 // Specular rays a reflection/refraction path may trace after the G-buffer surface (the bounce loop
@@ -235,7 +238,7 @@ struct LightRecord {
   float angularRadius;
   float cosInner;
   float cosOuter;
-  uint pad0;
+  uint flags;  // kLightVisibleShape
   uint pad1;
 };
 
