@@ -43,8 +43,8 @@ ImageF renderHdr(const std::filesystem::path& dir, const std::string& name, cons
                  int frames, const std::string& extra) {
   const auto exr = dir / (name + ".exr");
   RunResult r = runRayster("render " + scene.string() + " --size " + std::to_string(kW) + "x" + std::to_string(kH) +
-                           " --frames " + std::to_string(frames) + " --seed 3 --taa off --hdr " + exr.string() + " -o " +
-                           (dir / (name + ".png")).string() + " " + extra);
+                           " --frames " + std::to_string(frames) + " --seed 3 --taa off --hdr " + exr.string() +
+                           " -o " + (dir / (name + ".png")).string() + " " + extra);
   EXPECT_EQ(r.exitCode, 0) << r.output;
   auto hdr = readExr(exr);
   if (!hdr.ok()) {
