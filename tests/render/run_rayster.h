@@ -54,8 +54,19 @@ inline RunResult runRayster(const std::string& args, const std::string& env = ""
 // The viewer needs a display: Xvfb, with a 24-bit screen (its default 8-bit visual has no Vulkan
 // surface format).
 inline bool haveXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+// xvfb-run exits with codes of its own when it fails to clean up after the command (5: "problem
+// while cleaning up temporary directory", seen once under load), replacing rayster's: the command
+// runs inside `sh -c` that prints rayster's own exit code last, and that code is the result.
 inline RunResult runUnderXvfb(const std::string& args, const std::string& env = "") {
-  return runRaysterWith("xvfb-run -a -s '-screen 0 1024x768x24' ", args, env);
+  const std::string marker = "[rayster-exit ";
+  RunResult r = runRaysterWith("xvfb-run -a -s '-screen 0 1024x768x24' sh -c '\"$@\"; echo \"" + marker + "$?]\"' sh ",
+                               args, env);
+  const size_t at = r.output.rfind(marker);
+  if (at == std::string::npos) return r;  // xvfb-run failed before running the command: its code stands
+  r.exitCode = std::atoi(r.output.c_str() + at + marker.size());
+  const size_t end = r.output.find(']', at);
+  r.output.erase(at, end == std::string::npos ? std::string::npos : end - at + 2);
+  return r;
 }
 
 // Renders with `args` into dir/name.png, asserts success and a non-empty image of the given size.
