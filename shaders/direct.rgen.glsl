@@ -126,8 +126,7 @@ void main() {
   s.indirectSpecular = vec3(0.0);
   s.indirect = vec3(0.0);
   vec4 coat, sheen;
-  // A one-texel zero image in a scene without a clear coat or sheen (GBuffer::flatLayers).
-  decodeLayers(texelFetch(layersTex, min(px, textureSize(layersTex, 0) - 1), 0), coat, sheen);
+  decodeLayers(fetchNeutral(layersTex, px), coat, sheen);  // one zero texel without coats and sheens
   setLayers(s, coat, sheen);
   uint rng = rngInit(uvec2(px), frame.frameIndex, frame.seed ^ kShadowStream);
   vec3 direct = shadeDirect(s, shadingTerms(s), rng);

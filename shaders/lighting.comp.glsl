@@ -33,19 +33,8 @@ layout(set = 0, binding = 14) uniform usampler2D layersTex;  // encodeLayers(): 
 
 ivec2 gPixel;
 
-// An effect that records no pass leaves its input bound to a one-texel neutral image
-// (render/neutral_images.h): read those at texel 0, never outside the image (an out-of-bounds
-// texelFetch is undefined: 0 on lavapipe, which made --ao off drop all ambient and environment light).
-// The G-buffer's layers target is one too in a scene without a clear coat or sheen.
-ivec2 within(ivec2 size, ivec2 px) { return min(px, size - 1); }
-vec4 fetch(sampler2D t, ivec2 px) { return texelFetch(t, within(textureSize(t, 0), px), 0); }
-uvec4 fetch(usampler2D t, ivec2 px) { return texelFetch(t, within(textureSize(t, 0), px), 0); }
-vec4 fetchLayer(sampler2DArray t, ivec2 px, int layer) {
-  return texelFetch(t, ivec3(within(textureSize(t, 0).xy, px), layer), 0);
-}
-
 float lightVisibility(uint i, vec3 p, vec3 ng, inout uint rng) {
-  return i < frame.shadowLightCount ? fetchLayer(visibilityTex, gPixel, int(i)).r : 1.0;
+  return i < frame.shadowLightCount ? fetchNeutralLayer(visibilityTex, gPixel, int(i)).r : 1.0;
 }
 void skipLightVisibility(inout uint rng) {}
 
@@ -93,18 +82,18 @@ void main() {
   s.ior = emissive.a;
   s.specular = decodeSpecular(texelFetch(specularGbufTex, px, 0));
   s.tracedWeight = tracedSpecularWeight(s.roughness, s.transmission);
-  s.envOcclusion = fetchLayer(aoTex, px, int(frame.aoLayer)).r;
+  s.envOcclusion = fetchNeutralLayer(aoTex, px, int(frame.aoLayer)).r;
   s.useIndirect = (frame.effectFlags & kEffectIndirect) != 0u;
-  s.indirect = s.useIndirect ? fetch(indirectTex, px).rgb : vec3(0.0);
+  s.indirect = s.useIndirect ? fetchNeutral(indirectTex, px).rgb : vec3(0.0);
   s.sunHighlights = true;
   s.highlightWiden = s.tracedWeight > 0.0 ? normalSpread(px, s.n) : 0.0;  // used for the traced share only
   s.useIndirectSpecular = (frame.effectFlags & kEffectIndirectSpecular) != 0u;
-  s.indirectSpecular = s.useIndirectSpecular ? fetch(indirectSpecularTex, px).rgb : vec3(0.0);
+  s.indirectSpecular = s.useIndirectSpecular ? fetchNeutral(indirectSpecularTex, px).rgb : vec3(0.0);
   vec4 coat, sheen;
-  decodeLayers(fetch(layersTex, px), coat, sheen);  // a one-texel zero image without coats and sheens
+  decodeLayers(fetchNeutral(layersTex, px), coat, sheen);  // a one-texel zero image without coats and sheens
   setLayers(s, coat, sheen);
   uint rng = 0u;  // visibility comes from the shadow image: no random numbers needed here
-  vec3 traced = fetch(specularTex, px).rgb;
+  vec3 traced = fetchNeutral(specularTex, px).rgb;
   // Glass writes radiance; opaque surfaces the lobe average, remodulated by the lobe's albedo.
   if (s.transmission <= 0.0) {
     SurfaceBsdf bsdf = makeBsdf(s.baseColor, s.metallic, s.roughness, s.specular, s.ior);
@@ -112,6 +101,6 @@ void main() {
   }
   bool many = frame.manyLights != 0u;
   vec3 radiance = shadeSurface(s, !many, rng) + s.tracedWeight * underLayers(s) * traced;
-  if (many) radiance += fetch(directTex, px).rgb;
+  if (many) radiance += fetchNeutral(directTex, px).rgb;
   imageStore(outColor, px, vec4(radiance, 1.0));
 }

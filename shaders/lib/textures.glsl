@@ -32,4 +32,14 @@ vec2 transformUv(TextureSlot t, vec2 uv0, vec2 uv1) {
 #define SAMPLE_SLOT(t, uv0, uv1, fallback) \
   ((t).slot == kNoTexture ? (fallback) : RAYSTER_SAMPLE_BIASED((t).slot, transformUv((t), (uv0), (uv1)), (t).lodBias))
 
+// An effect that records no pass leaves its input bound to a one-texel neutral image
+// (render/neutral_images.h), and so is the G-buffer's layers target in a scene without a clear coat
+// or sheen: read such inputs at min(pixel, size - 1), never outside the image (an out-of-bounds
+// texelFetch is undefined: 0 on lavapipe, which made --ao off drop all ambient and environment light).
+vec4 fetchNeutral(sampler2D t, ivec2 px) { return texelFetch(t, min(px, textureSize(t, 0) - 1), 0); }
+uvec4 fetchNeutral(usampler2D t, ivec2 px) { return texelFetch(t, min(px, textureSize(t, 0) - 1), 0); }
+vec4 fetchNeutralLayer(sampler2DArray t, ivec2 px, int layer) {
+  return texelFetch(t, ivec3(min(px, textureSize(t, 0).xy - 1), layer), 0);
+}
+
 #endif
